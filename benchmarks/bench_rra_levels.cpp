@@ -1,0 +1,96 @@
+// Benchmark (not a test): the thesis RRA at every mesh level.
+//
+// For each level: DOFs, load steps, Newton iterations, time in assembly /
+// factorisation / solve and in total (median of --repeat runs), peak memory,
+// and the extension at the final pressure with its change from the next finer
+// level. With --treatments both, the same table for the locking-prone
+// pointwise volumetric integration, to justify the mean-dilatation element.
+//
+// Usage: bench_rra_levels [config] [--max-level L] [--repeat N] [--threads T] [--treatments both]
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "engine/scene_config.hpp"
+#include "fem/core/parallel.hpp"
+
+using namespace softarm;
+
+namespace {
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+double peak_memory_MiB() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024.0;
+}
+
+struct Row {
+  int level, elements, dofs, steps, iterations;
+  double assembly, factorize, solve, total, extension, reached;
+  std::string outcome;
+};
+
+Row run_level(fem::RraSceneSpec spec, int level, int repeat) {
+  spec.mesh_level = level;
+  std::vector<double> assembly, factorize, solve, total;
+  fem::RraResult r;
+  for (int k = 0; k < repeat; ++k) {
+    r = fem::run_rra_scene(spec);
+    assembly.push_back(r.timings.assembly_s);
+    factorize.push_back(r.path.factorize_s + r.path.analyse_s);
+    solve.push_back(r.path.solve_s);
+    total.push_back(r.timings.total_s);
+  }
+  return {level, r.mesh.num_elements(), r.dofs, r.path.path.stats.steps, r.path.path.stats.newton_iterations,
+          median(assembly), median(factorize), median(solve), median(total),
+          r.curve.empty() ? 0.0 : r.curve.back().extension_mm, r.path.reached_pressure_kPa,
+          fem::to_string(r.path.outcome)};
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string config = "configs/rra_thesis.json";
+  int max_level = 5, repeat = 5, threads = 1;
+  bool both = false;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--max-level") && i + 1 < argc) max_level = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--treatments") && i + 1 < argc) both = std::string(argv[++i]) == "both";
+    else config = argv[i];
+  }
+  fem::set_thread_count(threads);
+  const auto scene = engine::load_scene_config(config);
+  std::printf("thesis RRA benchmark: %s, %d thread(s), median of %d runs per level\n", config.c_str(), threads, repeat);
+  for (auto treatment : {fem::VolumetricTreatment::mean_dilatation, fem::VolumetricTreatment::pointwise}) {
+    if (treatment == fem::VolumetricTreatment::pointwise && !both) break;
+    auto spec = scene.rra;
+    spec.treatment = treatment;
+    std::printf("\nvolumetric treatment: %s\n", treatment == fem::VolumetricTreatment::pointwise ? "pointwise (locks)" : "mean dilatation");
+    std::printf("level elements   dofs steps newton  assembly_s factor_s solve_s  total_s  peak_MiB  ext_mm@%.1fkPa  outcome\n",
+                spec.path.max_pressure_kPa);
+    std::vector<Row> rows;
+    for (int level = 1; level <= max_level; ++level) {
+      rows.push_back(run_level(spec, level, level >= 5 ? 1 : repeat));
+      const Row& r = rows.back();
+      std::printf("%5d %8d %6d %5d %6d  %10.4f %8.4f %7.4f %8.4f %9.1f  %12.5f  %s\n", r.level, r.elements, r.dofs, r.steps,
+                  r.iterations, r.assembly, r.factorize, r.solve, r.total, peak_memory_MiB(), r.extension, r.outcome.c_str());
+      std::fflush(stdout);
+    }
+    std::printf("change of the extension from the next finer level:\n");
+    for (std::size_t k = 0; k + 1 < rows.size(); ++k)
+      std::printf("  level %d -> %d: %+.4f %%\n", rows[k].level, rows[k + 1].level,
+                  100.0 * (rows[k].extension - rows[k + 1].extension) / rows[k + 1].extension);
+    std::printf("  level %d vs finest (%d): %+.4f %%\n", spec.mesh_level, rows.back().level,
+                100.0 * (rows[std::min<std::size_t>(spec.mesh_level, rows.size()) - 1].extension - rows.back().extension) /
+                    rows.back().extension);
+  }
+  return 0;
+}

@@ -1,0 +1,85 @@
+#include "engine/cli.hpp"
+
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "engine/material_command.hpp"
+#include "engine/rra_report.hpp"
+#include "engine/scene_config.hpp"
+#include "fem/core/input_error.hpp"
+#include "fem/core/json_reader.hpp"
+#include "fem/core/parallel.hpp"
+
+namespace softarm::engine {
+namespace {
+
+int simulate(const std::string& file, const std::string& output_override, int mesh_level_override) {
+  SceneConfig config = load_scene_config(file);
+  if (!output_override.empty()) config.output.directory = output_override;
+  if (mesh_level_override > 0) config.rra.mesh_level = mesh_level_override;
+  std::cout << "softarm simulate: " << file << " (scene " << config.scene << ", mesh level " << config.rra.mesh_level
+            << ", threads " << fem::thread_count() << ")\n";
+  RraCurveWriter writer(config.output.directory, std::cout);
+  const auto result = fem::run_rra_scene(config.rra, [&](const fem::RraCurvePoint& p) { writer.add(p); });
+  write_rra_summary(config, result, std::cout);
+  // A limit point is a valid physical answer; a stall is not the requested result.
+  return result.path.outcome == fem::PathOutcome::stalled ? 1 : 0;
+}
+
+void print_schema() {
+  // Reading a complete default scene registers every field with its documentation.
+  nlohmann::json probe = {{"scene", "rra"},
+                          {"geometry", {{"wall_thickness_normalised", 0.466}, {"end_cap_thickness_normalised", 0.25},
+                                        {"ring_count_normalised", 0.375}, {"ring_thickness_normalised", 0.4}}},
+                          {"load", {{"max_pressure_kPa", 206.8}}}};
+  read_scene_config(probe);
+  for (const auto& f : fem::JsonReader::documented_fields())
+    std::cout << f.path << "  (" << f.type << ", default " << f.default_value
+              << (f.range.empty() ? "" : ", valid " + f.range) << ")\n    " << f.doc << "\n";
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+  CLI::App app{"softarm: design optimisation and simulation of soft pneumatic continuum arms"};
+  app.require_subcommand(1);
+  app.fallthrough();  // global options (--threads) may follow the subcommand
+  int threads = 0;
+  app.add_option("--threads", threads, "worker threads for assembly (default: SOFTARM_THREADS or all cores)");
+
+  std::string scene_file, output_dir;
+  int mesh_level = 0;
+  auto* sim = app.add_subcommand("simulate", "run a scene config (e.g. configs/rra_thesis.json)");
+  sim->add_option("scene", scene_file, "scene JSON file")->required();
+  sim->add_option("-o,--output", output_dir, "output directory (overrides output.directory)");
+  sim->add_option("--mesh-level", mesh_level, "mesh refinement level (overrides mesh.level)");
+
+  auto* schema = app.add_subcommand("schema", "list every scene-config key with its unit, default and valid range");
+  add_material_command(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  } catch (const fem::InputError& e) {
+    std::cerr << "softarm: " << e.what() << "\n";
+    return 2;
+  }
+  if (threads > 0) fem::set_thread_count(threads);
+  try {
+    if (*sim) return simulate(scene_file, output_dir, mesh_level);
+    if (*schema) {
+      print_schema();
+      return 0;
+    }
+  } catch (const fem::InputError& e) {
+    std::cerr << "softarm: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "softarm: internal error: " << e.what() << "\n";
+    return 3;
+  }
+  return 0;
+}
+
+}  // namespace softarm::engine

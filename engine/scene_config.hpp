@@ -1,0 +1,28 @@
+#pragma once
+// Scene configuration: JSON → validated, defaulted specs. Every key carries
+// its unit, unknown keys are rejected with the field named, and the same
+// declarations print as documentation (`softarm schema`).
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "fem/scenes/rra_scene.hpp"
+
+namespace softarm::engine {
+
+struct OutputSpec {
+  std::string directory = "out";
+  bool vtu = true;
+};
+
+struct SceneConfig {
+  std::string scene;               // "rra"
+  fem::RraSceneSpec rra;
+  OutputSpec output;
+  bool verbose = false;
+};
+
+/// Reads a scene file (the whole document); throws fem::InputError naming the field.
+SceneConfig read_scene_config(const nlohmann::json& document);
+SceneConfig load_scene_config(const std::string& file_name);
+
+}  // namespace softarm::engine

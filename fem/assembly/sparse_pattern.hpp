@@ -1,0 +1,55 @@
+#pragma once
+// The sparsity pattern of the global tangent, built once per mesh, and the
+// accumulator that scatters element blocks into it (PolyFEM/deal.II style:
+// pattern and symbolic factorisation once, numeric work per iteration).
+//
+// Every form declares the dof blocks it couples; each block gets a table of
+// positions in the compressed matrix, so scattering is a lookup, not a search.
+// Threads accumulate into private value arrays that are summed at the end,
+// so assembly needs no locks and is deterministic for a fixed thread count.
+#include <Eigen/SparseCore>
+#include <span>
+#include <vector>
+
+namespace softarm::fem {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;  // column-major, full symmetric storage
+
+class SparsePattern {
+ public:
+  explicit SparsePattern(int num_dofs) : num_dofs_(num_dofs) {}
+
+  /// Declares that all `dofs` couple with each other; returns the block's handle.
+  int declare_block(std::span<const int> dofs);
+  /// Builds the compressed matrix and the position tables. Call once, after all blocks.
+  void finalize();
+
+  int num_dofs() const { return num_dofs_; }
+  bool finalized() const { return finalized_; }
+  const SparseMatrix& zero_matrix() const { return matrix_; }
+  int block_size(int block) const { return block_sizes_[block]; }
+  const int* positions(int block) const { return positions_.data() + position_offsets_[block]; }
+
+ private:
+  int num_dofs_;
+  bool finalized_ = false;
+  std::vector<int> block_dofs_, block_offsets_{0}, block_sizes_;
+  std::vector<int> positions_;
+  std::vector<std::size_t> position_offsets_;
+  SparseMatrix matrix_;
+};
+
+class HessianAccumulator {
+ public:
+  explicit HessianAccumulator(const SparsePattern& pattern, int threads);
+  /// Adds a dense n×n block (column-major, n = block size) for the declared block.
+  void add_block(int thread, int block, const double* values);
+  /// Sums the thread buffers into a matrix with the pattern's structure.
+  void finish(SparseMatrix& out) const;
+
+ private:
+  const SparsePattern& pattern_;
+  std::vector<std::vector<double>> buffers_;
+};
+
+}  // namespace softarm::fem

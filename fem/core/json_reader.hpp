@@ -1,0 +1,78 @@
+#pragma once
+// Reads one JSON object against a declared spec: every field is declared with
+// its type, unit (in the key), default and valid range, values are validated
+// as they are read, and finish() rejects keys nobody declared (typos). The
+// declarations double as documentation: describe() lists them for
+// `softarm schema` and the README.
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fem/core/input_error.hpp"
+
+namespace softarm::fem {
+
+/// Valid interval for a number; open or closed at each end.
+struct Range {
+  double lo = -1e300, hi = 1e300;
+  bool lo_open = false, hi_open = false;
+  static Range closed(double lo, double hi) { return {lo, hi, false, false}; }
+  static Range positive() { return {0.0, 1e300, true, false}; }
+  static Range non_negative() { return {0.0, 1e300, false, false}; }
+  static Range open(double lo, double hi) { return {lo, hi, true, true}; }
+  static Range at_least(double lo) { return {lo, 1e300, false, false}; }
+  bool contains(double x) const;
+  std::string describe() const;
+};
+
+/// One declared field, kept for documentation.
+struct FieldDoc {
+  std::string path, type, default_value, range, doc;
+};
+
+class JsonReader {
+ public:
+  /// `path` is the dotted location of `object` in the file ("" at the root).
+  JsonReader(const nlohmann::json& object, std::string path);
+
+  double number(const std::string& key, Range range, const std::string& doc);
+  double number(const std::string& key, double default_value, Range range, const std::string& doc);
+  std::optional<double> optional_number(const std::string& key, Range range, const std::string& doc);
+  int integer(const std::string& key, int default_value, Range range, const std::string& doc);
+  std::optional<int> optional_integer(const std::string& key, Range range, const std::string& doc);
+  bool boolean(const std::string& key, bool default_value, const std::string& doc);
+  std::string string(const std::string& key, const std::string& doc);
+  std::string string(const std::string& key, const std::string& default_value, const std::string& doc);
+  /// A string restricted to `choices`.
+  std::string choice(const std::string& key, const std::string& default_value,
+                     const std::vector<std::string>& choices, const std::string& doc);
+  std::vector<double> number_list(const std::string& key, Range range, const std::string& doc);
+  bool has(const std::string& key) const;
+  /// Sub-object reader (the key must hold an object); an absent key reads as {}.
+  JsonReader object(const std::string& key, const std::string& doc);
+  const nlohmann::json& raw(const std::string& key) const;
+  /// Exactly one of `keys` must be present (e.g. a physical or a normalised size).
+  std::string exactly_one_of(const std::vector<std::string>& keys) const;
+
+  /// Rejects every key that was not read: "unknown key 'lenght_mm' (known: ...)".
+  void finish() const;
+
+  std::string field(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  const std::string& path() const { return path_; }
+  static const std::vector<FieldDoc>& documented_fields();
+
+ private:
+  const nlohmann::json& at(const std::string& key, const std::string& type) const;
+  void declare(const std::string& key, const std::string& type, const std::string& def, const std::string& range,
+               const std::string& doc);
+
+  const nlohmann::json& object_;
+  std::string path_;
+  mutable std::vector<std::string> read_;
+};
+
+/// Parses a JSON file; malformed JSON raises an InputError with line and column.
+nlohmann::json load_json_file(const std::string& file_name);
+
+}  // namespace softarm::fem

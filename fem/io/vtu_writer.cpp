@@ -1,0 +1,196 @@
+#include "fem/io/vtu_writer.hpp"
+
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <stdexcept>
+#include <unistd.h>
+
+namespace softarm::fem {
+namespace {
+
+constexpr int vtk_quad = 9, vtk_hexahedron = 12;
+
+int vtk_cell_type(const Mesh& mesh) {
+  if (mesh.dim == 2 && mesh.nodes_per_element == 4) return vtk_quad;
+  if (mesh.dim == 3 && mesh.nodes_per_element == 8) return vtk_hexahedron;
+  throw std::invalid_argument("write_vtu: unsupported element (dim " + std::to_string(mesh.dim) + ", " +
+                              std::to_string(mesh.nodes_per_element) + " nodes)");
+}
+
+std::string xml_escaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+/// Appends the shortest decimal text that reads back as exactly `x`.
+void append_number(std::string& out, double x) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
+  out.append(buffer, result.ptr);
+}
+void append_number(std::string& out, long long x) {
+  char buffer[24];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
+  out.append(buffer, result.ptr);
+}
+
+class VtuText {
+ public:
+  void open_array(const std::string& type, const std::string& name, int components) {
+    text_ += "        <DataArray type=\"" + type + "\"";
+    if (!name.empty()) text_ += " Name=\"" + xml_escaped(name) + "\"";
+    text_ += " NumberOfComponents=\"" + std::to_string(components) + "\" format=\"ascii\">\n";
+  }
+  void close_array() { text_ += "        </DataArray>\n"; }
+  /// One tuple of `components` numbers per line.
+  template <class Number>
+  void tuples(const std::vector<Number>& values, int components) {
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      text_ += i % static_cast<std::size_t>(components) == 0 ? "          " : " ";
+      append_number(text_, values[i]);
+      if ((i + 1) % static_cast<std::size_t>(components) == 0) text_ += '\n';
+    }
+  }
+  void line(const std::string& s) { text_ += s + '\n'; }
+  const std::string& str() const { return text_; }
+
+ private:
+  std::string text_;
+};
+
+/// Points or point vectors of a dim-2 or dim-3 matrix, in 3D (x = r, y = 0, z = z for dim 2).
+std::vector<double> as_3d(const Eigen::MatrixXd& m) {
+  std::vector<double> out;
+  out.reserve(static_cast<std::size_t>(m.rows()) * 3);
+  for (Eigen::Index n = 0; n < m.rows(); ++n) {
+    if (m.cols() == 2) out.insert(out.end(), {m(n, 0), 0.0, m(n, 1)});
+    else out.insert(out.end(), {m(n, 0), m(n, 1), m(n, 2)});
+  }
+  return out;
+}
+
+void check_fields(const std::vector<NamedField>& fields, std::size_t count, const char* where,
+                  std::set<std::string>& names) {
+  for (const auto& f : fields) {
+    if (f.name.empty() || f.components < 1)
+      throw std::invalid_argument(std::string("write_vtu: ") + where + " field needs a name and >= 1 component");
+    if (!names.insert(f.name).second)
+      throw std::invalid_argument("write_vtu: field name '" + f.name + "' is used twice or reserved");
+    if (f.values.size() != count * static_cast<std::size_t>(f.components))
+      throw std::invalid_argument("write_vtu: " + std::string(where) + " field '" + f.name + "' has " +
+                                  std::to_string(f.values.size()) + " values, expected " +
+                                  std::to_string(count * static_cast<std::size_t>(f.components)));
+  }
+}
+
+std::string vtu_document(const Mesh& mesh, const Eigen::MatrixXd& x, const std::vector<NamedField>& point_fields,
+                         const std::vector<NamedField>& cell_fields) {
+  const int cell_type = vtk_cell_type(mesh);
+  const auto num_nodes = static_cast<std::size_t>(mesh.num_nodes());
+  const auto num_cells = static_cast<std::size_t>(mesh.num_elements());
+  if (x.rows() != mesh.X.rows() || x.cols() != mesh.X.cols() || mesh.X.cols() != mesh.dim)
+    throw std::invalid_argument("write_vtu: current positions are " + std::to_string(x.rows()) + " x " +
+                                std::to_string(x.cols()) + ", the mesh has " + std::to_string(num_nodes) + " x " +
+                                std::to_string(mesh.dim));
+  if (mesh.part.size() != num_cells) throw std::invalid_argument("write_vtu: mesh.part has the wrong size");
+  std::set<std::string> names{"displacement"};
+  check_fields(point_fields, num_nodes, "point", names);
+  names = {"part"};
+  check_fields(cell_fields, num_cells, "cell", names);
+
+  VtuText out;
+  out.line("<?xml version=\"1.0\"?>");
+  out.line("<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">");
+  out.line("  <UnstructuredGrid>");
+  out.line("    <Piece NumberOfPoints=\"" + std::to_string(num_nodes) + "\" NumberOfCells=\"" +
+           std::to_string(num_cells) + "\">");
+
+  out.line("      <PointData Vectors=\"displacement\">");
+  out.open_array("Float64", "displacement", 3);
+  out.tuples(as_3d(x - mesh.X), 3);
+  out.close_array();
+  for (const auto& f : point_fields) {
+    out.open_array("Float64", f.name, f.components);
+    out.tuples(f.values, f.components);
+    out.close_array();
+  }
+  out.line("      </PointData>");
+
+  out.line("      <CellData Scalars=\"part\">");
+  out.open_array("Int32", "part", 1);
+  out.tuples(std::vector<long long>(mesh.part.begin(), mesh.part.end()), 1);
+  out.close_array();
+  for (const auto& f : cell_fields) {
+    out.open_array("Float64", f.name, f.components);
+    out.tuples(f.values, f.components);
+    out.close_array();
+  }
+  out.line("      </CellData>");
+
+  out.line("      <Points>");
+  out.open_array("Float64", "", 3);
+  out.tuples(as_3d(x), 3);
+  out.close_array();
+  out.line("      </Points>");
+
+  const int npe = mesh.nodes_per_element;
+  std::vector<long long> offsets, types(num_cells, cell_type);
+  for (std::size_t e = 1; e <= num_cells; ++e) offsets.push_back(static_cast<long long>(e) * npe);
+  out.line("      <Cells>");
+  out.open_array("Int64", "connectivity", 1);
+  out.tuples(std::vector<long long>(mesh.connectivity.begin(), mesh.connectivity.end()), npe);
+  out.close_array();
+  out.open_array("Int64", "offsets", 1);
+  out.tuples(offsets, 1);
+  out.close_array();
+  out.open_array("UInt8", "types", 1);
+  out.tuples(types, 1);
+  out.close_array();
+  out.line("      </Cells>");
+
+  out.line("    </Piece>");
+  out.line("  </UnstructuredGrid>");
+  out.line("</VTKFile>");
+  return out.str();
+}
+
+}  // namespace
+
+void write_vtu(const std::string& path, const Mesh& mesh, const Eigen::MatrixXd& current_positions,
+               const std::vector<NamedField>& point_fields, const std::vector<NamedField>& cell_fields) {
+  const std::string text = vtu_document(mesh, current_positions, point_fields, cell_fields);
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  std::error_code ignored;
+  if (target.has_parent_path()) fs::create_directories(target.parent_path(), ignored);
+  // Same folder, so the rename is atomic; the pid keeps concurrent writers apart.
+  const fs::path temporary = target.string() + ".tmp" + std::to_string(::getpid());
+  {
+    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+    file << text;
+    file.close();
+    if (!file) {
+      fs::remove(temporary, ignored);
+      throw std::runtime_error("write_vtu: cannot write '" + path + "'");
+    }
+  }
+  std::error_code error;
+  fs::rename(temporary, target, error);
+  if (error) {
+    fs::remove(temporary, ignored);
+    throw std::runtime_error("write_vtu: cannot move the output into '" + path + "': " + error.message());
+  }
+}
+
+}  // namespace softarm::fem

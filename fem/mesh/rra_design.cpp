@@ -1,0 +1,163 @@
+#include "fem/mesh/rra_design.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace softarm::fem {
+namespace {
+
+// The JSON field each parameter came from, so that a validation error names the
+// key the user actually wrote (physical or normalised).
+struct FieldNames {
+  std::string length = "geometry.length_mm";
+  std::string bottom_radius = "geometry.bottom_radius_mm";
+  std::string top_radius = "geometry.top_radius_mm";
+  std::string wall = "geometry.wall_thickness_mm";
+  std::string cap = "geometry.end_cap_thickness_mm";
+  std::string ring_count = "geometry.ring_count";
+  std::string ring_size = "geometry.ring_diameter_mm";
+};
+
+std::string show(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
+std::string with_normalised(double mm, double normalised) {
+  return show(mm) + " mm (normalised " + show(normalised) + ")";
+}
+
+void require_positive(double x, const std::string& field, const std::string& what) {
+  if (!(x > 0) || !std::isfinite(x)) throw InputError(field, what + " is " + show(x) + " mm; it must be > 0");
+}
+
+void validate_design(const RraDesign& d, const FieldNames& f) {
+  require_positive(d.length_mm, f.length, "length");
+  require_positive(d.bottom_radius_mm, f.bottom_radius, "bottom radius");
+  require_positive(d.top_radius_mm, f.top_radius, "top radius");
+  require_positive(d.wall_thickness_mm, f.wall, "wall thickness");
+  require_positive(d.end_cap_thickness_mm, f.cap, "end-cap thickness");
+  const double r_b = d.bottom_radius_mm;
+
+  // Chamber radius r_c = r_o − t_w (spec §1) must stay positive along the whole taper.
+  const double r_min = d.smallest_outer_radius();
+  if (d.wall_thickness_mm >= r_min)
+    throw InputError(f.wall, "wall thickness " + with_normalised(d.wall_thickness_mm, d.wall_thickness_mm / r_b) +
+                                 " leaves no chamber: it must be less than the smaller outer radius " + show(r_min) +
+                                 " mm (normalised " + show(r_min / r_b) + ")");
+  if (2 * d.end_cap_thickness_mm >= d.length_mm)
+    throw InputError(f.cap, "two end caps of " + with_normalised(d.end_cap_thickness_mm, d.end_cap_thickness_mm / r_b) +
+                                " leave no chamber in a " + show(d.length_mm) + " mm tube: need t_c < l/2 = " +
+                                show(d.length_mm / 2) + " mm");
+
+  if (d.ring_count < 0) throw InputError(f.ring_count, "ring count " + std::to_string(d.ring_count) + " must be >= 0");
+  if (d.ring_count == 0) return;
+  const double pitch = d.pitch(), d_r = d.ring_diameter_mm;
+  if (!(d_r > 0) || !std::isfinite(d_r))
+    throw InputError(f.ring_size, "ring diameter is " + show(d_r) + " mm; it must be > 0 when there are rings");
+  // d_r = pitch means touching rings: no tube surface would be left between the
+  // grooves (a cusp of zero thickness), which no mesh can represent.
+  if (d_r >= pitch)
+    throw InputError(f.ring_size, "ring diameter " + with_normalised(d_r, d_r / pitch) +
+                                      " does not fit: it must be less than the ring pitch l/n_r = " + show(pitch) +
+                                      " mm (normalised < 1; at 1 neighbouring rings touch)");
+  if (d.ring_section_radius() >= d.wall_thickness_mm)
+    throw InputError(f.ring_size, "ring diameter " + with_normalised(d_r, d_r / pitch) + ": its groove depth d_r/2 = " +
+                                      show(d.ring_section_radius()) + " mm must be less than the wall thickness " +
+                                      show(d.wall_thickness_mm) + " mm, or the groove cuts into the chamber");
+}
+
+/// Reads one parameter given either physically (mm) or normalised (× scale);
+/// exactly one of the two keys must be present. Records which one in `field`.
+double physical_or_normalised(JsonReader& g, const std::string& physical_key, const std::string& normalised_key,
+                              double scale, const std::string& what, const std::string& normalised_as,
+                              std::string& field) {
+  const auto physical = g.optional_number(physical_key, Range::positive(), what + " (mm)");
+  const auto normalised = g.optional_number(normalised_key, Range::positive(), what + ", normalised " + normalised_as);
+  field = g.field(g.exactly_one_of({physical_key, normalised_key}));
+  return physical ? *physical : *normalised * scale;
+}
+
+int read_ring_count(JsonReader& g, double length, double reference_diameter, std::string& field) {
+  const auto count = g.optional_integer("ring_count", Range::non_negative(), "number of rings n_r (0 = plain tube)");
+  const auto normalised = g.optional_number("ring_count_normalised", Range::non_negative(),
+                                            "ring count, normalised: n_r = round(l·r̂ / ring_reference_diameter_mm), eq 8");
+  field = g.field(g.exactly_one_of({"ring_count", "ring_count_normalised"}));
+  if (count) return *count;
+  const double n = std::round(length * *normalised / reference_diameter);
+  if (n > 1e6) throw InputError(field, "gives " + show(n) + " rings; at most 1000000");
+  return static_cast<int>(n);
+}
+
+double read_ring_diameter(JsonReader& g, int ring_count, double length, std::string& field) {
+  const auto diameter = g.optional_number("ring_diameter_mm", Range::positive(), "ring section diameter d_r (mm)");
+  const auto normalised = g.optional_number("ring_thickness_normalised", Range::positive(),
+                                            "ring section diameter, normalised d_r / (l / n_r) (1 = rings touch)");
+  if (ring_count == 0 && !diameter && !normalised) return 0.0;  // a plain tube needs no ring size
+  field = g.field(g.exactly_one_of({"ring_diameter_mm", "ring_thickness_normalised"}));
+  if (diameter) return *diameter;
+  return ring_count > 0 ? *normalised * length / ring_count : 0.0;
+}
+
+}  // namespace
+
+RraDesign read_rra_design(JsonReader& g) {
+  RraDesign d;
+  FieldNames f;
+  d.length_mm = g.number("length_mm", 160, Range::positive(), "axial length of the tube, caps included (mm)");
+  f.length = g.field("length_mm");
+  d.bottom_radius_mm = g.number("bottom_radius_mm", 9, Range::positive(), "outer radius at the bottom (distal) end, z = 0 (mm)");
+  f.bottom_radius = g.field("bottom_radius_mm");
+  d.top_radius_mm = g.number("top_radius_mm", 12, Range::positive(), "outer radius at the top (proximal) end, z = l (mm)");
+  f.top_radius = g.field("top_radius_mm");
+  const double r_b = d.bottom_radius_mm;
+  d.wall_thickness_mm = physical_or_normalised(g, "wall_thickness_mm", "wall_thickness_normalised", r_b,
+                                               "radial wall thickness t_w", "t_w / r_b", f.wall);
+  d.end_cap_thickness_mm = physical_or_normalised(g, "end_cap_thickness_mm", "end_cap_thickness_normalised", r_b,
+                                                  "axial end-cap thickness t_c", "t_c / r_b", f.cap);
+  d.ring_reference_diameter_mm = g.number("ring_reference_diameter_mm", 2, Range::positive(),
+                                          "reference ring diameter d_ref of eq 8 (mm)");
+  d.ring_count = read_ring_count(g, d.length_mm, d.ring_reference_diameter_mm, f.ring_count);
+  d.ring_diameter_mm = read_ring_diameter(g, d.ring_count, d.length_mm, f.ring_size);
+  d.fixed_end = g.choice("fixed_end", "top", {"top", "bottom"}, "which end is clamped") == "top"
+                    ? RraDesign::FixedEnd::top
+                    : RraDesign::FixedEnd::bottom;
+  g.finish();
+  validate_design(d, f);
+  return d;
+}
+
+void validate(const RraDesign& design) { validate_design(design, FieldNames{}); }
+
+nlohmann::json to_json(const RraDesign& d) {
+  const double r_b = d.bottom_radius_mm, l = d.length_mm, t_c = d.end_cap_thickness_mm;
+  nlohmann::json physical = {
+      {"length_mm", l},
+      {"bottom_radius_mm", r_b},
+      {"top_radius_mm", d.top_radius_mm},
+      {"wall_thickness_mm", d.wall_thickness_mm},
+      {"end_cap_thickness_mm", t_c},
+      {"ring_count", d.ring_count},
+      {"ring_reference_diameter_mm", d.ring_reference_diameter_mm},
+      {"fixed_end", d.fixed_end == RraDesign::FixedEnd::top ? "top" : "bottom"},
+  };
+  if (d.ring_count > 0) physical["ring_diameter_mm"] = d.ring_diameter_mm;
+  nlohmann::json normalised = {
+      {"wall_thickness_normalised", d.wall_thickness_mm / r_b},
+      {"end_cap_thickness_normalised", t_c / r_b},
+      {"ring_count_normalised", d.ring_count * d.ring_reference_diameter_mm / l},
+      {"ring_thickness_normalised", d.ring_count > 0 ? d.ring_diameter_mm / d.pitch() : 0.0},
+  };
+  nlohmann::json derived = {
+      {"pitch_mm", d.pitch()},
+      {"ring_section_radius_mm", d.ring_section_radius()},
+      {"chamber_length_mm", l - 2 * t_c},
+      {"chamber_radius_at_bottom_cap_mm", d.chamber_radius(t_c)},
+      {"chamber_radius_at_top_cap_mm", d.chamber_radius(l - t_c)},
+  };
+  return {{"physical", physical}, {"normalised", normalised}, {"derived", derived}};
+}
+
+}  // namespace softarm::fem

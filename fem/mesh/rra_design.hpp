@@ -1,0 +1,66 @@
+#pragma once
+// Design parameters of the ring-reinforced actuator (RRA), spec §1 "our
+// definition" column. One place owns the geometry: the mesher, the reports and
+// the studies all read it from here. Lengths in mm.
+//
+//   z = 0 is the bottom (distal) end, z = l the top (proximal) end.
+//   Outer radius r_o(z): linear taper from r_b (z = 0) to r_t (z = l).
+//   Chamber radius r_c(z) = r_o(z) − t_w, for t_c ≤ z ≤ l − t_c; the end caps
+//   (axial thickness t_c) are solid from the axis to the outer surface.
+//   n_r rings of circular section (diameter d_r) centred on the outer surface at
+//   z_k = (k − ½)·l/n_r, k = 1..n_r, seated half-depth in semicircular grooves.
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "fem/core/json_reader.hpp"
+
+namespace softarm::fem {
+
+/// Defaults: the thesis RRA (Table 7).
+struct RraDesign {
+  double length_mm = 160, bottom_radius_mm = 9, top_radius_mm = 12;  // outer radii, linear taper
+  double wall_thickness_mm = 0.466 * 9, end_cap_thickness_mm = 0.25 * 9;
+  int ring_count = 30;                          // n_r (0 = plain tube)
+  double ring_diameter_mm = 0.4 * 160.0 / 30;   // d_r, circular ring section
+  double ring_reference_diameter_mm = 2;        // d_ref of eq 8; only used to report r̂
+  enum class FixedEnd { top, bottom } fixed_end = FixedEnd::top;
+
+  /// Outer radius of the plain tapered tube (grooves ignored).
+  double outer_radius(double z) const { return bottom_radius_mm + (top_radius_mm - bottom_radius_mm) * z / length_mm; }
+  /// Radius of the chamber wall (meaningful for t_c ≤ z ≤ l − t_c).
+  double chamber_radius(double z) const { return outer_radius(z) - wall_thickness_mm; }
+  /// Axial distance between neighbouring ring centres, l / n_r (0 without rings).
+  double pitch() const { return ring_count > 0 ? length_mm / ring_count : 0.0; }
+  /// Axial position of ring k = 1..n_r.
+  double ring_centre_z(int k) const { return (k - 0.5) * pitch(); }
+  /// Radius ρ = d_r / 2 of the ring section (and of its groove).
+  double ring_section_radius() const { return 0.5 * ring_diameter_mm; }
+  /// Smaller of the two end radii: the wall must be thinner than this.
+  double smallest_outer_radius() const { return std::min(bottom_radius_mm, top_radius_mm); }
+};
+
+/// Reads the "geometry" object (and rejects unknown keys in it, so read any
+/// extra keys of that object before calling this). Each sized parameter may be
+/// given physically or normalised (exactly one of each pair):
+///   wall_thickness_mm     | wall_thickness_normalised     (= t_w / r_b)
+///   end_cap_thickness_mm  | end_cap_thickness_normalised  (= t_c / r_b)
+///   ring_count            | ring_count_normalised         (n_r = round(l·r̂ / ring_reference_diameter_mm), eq 8)
+///   ring_diameter_mm      | ring_thickness_normalised     (= d_r / (l / n_r); 1 = neighbouring rings touch)
+/// plus length_mm, bottom_radius_mm, top_radius_mm (defaults 160, 9, 12),
+/// ring_reference_diameter_mm (default 2) and fixed_end ("top" | "bottom",
+/// default "top"). With n_r = 0 the ring size may be omitted. The result is
+/// validated; errors name the key the user actually wrote.
+RraDesign read_rra_design(JsonReader& geometry);
+
+/// Throws InputError naming the offending field (as "geometry.<physical key>")
+/// when the design cannot be built: non-positive sizes, a wall that leaves no
+/// chamber, caps that leave no chamber, rings that touch or overlap (d_r ≥ l/n_r)
+/// or grooves as deep as the wall (d_r/2 ≥ t_w). Any positive taper, including
+/// a reverse one (r_t < r_b), is valid.
+void validate(const RraDesign& design);
+
+/// {"physical": {...}, "normalised": {...}, "derived": {...}}. "physical" alone is
+/// a valid "geometry" input (it round-trips through read_rra_design).
+nlohmann::json to_json(const RraDesign& design);
+
+}  // namespace softarm::fem

@@ -1,0 +1,406 @@
+#include "fem/mesh/rra_mesher.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "fem/core/input_error.hpp"
+#include "fem/mesh/structured_mesh.hpp"
+
+namespace softarm::fem {
+namespace {
+
+using Point = Eigen::Vector2d;  // (r, z)
+constexpr double pi = std::numbers::pi;
+constexpr int tube_part = 0, ring_part = 1;
+// Half-diagonal of a ring's square core, as a fraction of the ring radius ρ.
+constexpr double ring_core_fraction = 0.55;
+// Axial reach of a bent lip transversal, as a fraction of the wall width there
+// (further limited by the room in the neighbouring gap). At most 0.5, so that
+// the 45° bend fits inside the wall.
+constexpr double lip_bend_fraction = 0.2;
+
+/// Outer surface of the tube between grooves (our definition): piecewise linear
+/// through (0, r_b), both lips of every groove at that ring's centre radius
+/// R_k = r_o(z_k), and (l, r_t). Giving both lips the radius R_k keeps the
+/// surface continuous where the semicircular groove r = R_k − √(ρ² − (z − z_k)²)
+/// meets it; the cost is that a lip sits off the straight taper by at most
+/// |r_t − r_b|·ρ / l (0.02 mm for the thesis RRA).
+class OuterProfile {
+ public:
+  explicit OuterProfile(const RraDesign& d) {
+    knots_.push_back({0.0, d.bottom_radius_mm});
+    const double rho = d.ring_section_radius();
+    for (int k = 1; k <= d.ring_count; ++k) {
+      const double z = d.ring_centre_z(k), r = d.outer_radius(z);
+      knots_.push_back({z - rho, r});
+      knots_.push_back({z + rho, r});
+    }
+    knots_.push_back({d.length_mm, d.top_radius_mm});
+  }
+  double radius(double z) const {
+    const auto upper = std::upper_bound(knots_.begin() + 1, knots_.end() - 1, z,
+                                        [](double value, const Point& knot) { return value < knot.x(); });
+    const Point& a = *(upper - 1);
+    const Point& b = *upper;
+    return a.y() + (b.y() - a.y()) * (z - a.x()) / (b.x() - a.x());
+  }
+
+ private:
+  std::vector<Point> knots_;  // (z, r)
+};
+
+/// The semicircular groove of ring k and the ring's circle: node q of the circle,
+/// divided into 2·segments, is at angle φ = qπ/segments with
+/// (r, z) = (R_k − ρ sin φ, z_k − ρ cos φ): q = 0 is the lower lip, q = segments
+/// the upper lip, 0 < q < segments the groove, q > segments the ring's free side.
+struct Groove {
+  Point centre;  // (R_k, z_k)
+  double rho = 0;
+  int segments = 0;
+  static Point direction(double phi) { return {-std::sin(phi), -std::cos(phi)}; }
+  Point arc_point(int q) const { return centre + rho * direction(q * pi / segments); }
+  double lip_z(int side) const { return centre.y() + (side == 0 ? -rho : rho); }
+};
+
+/// A key mesh line across the wall, from `inner` (on r = r_c(z)) at η = 0 to
+/// `outer` (on the outer surface) at η = 1, r linear in η. A bent one
+/// (bend_extent > 0) leaves `outer` along a parabola in η that reaches the axial
+/// offset `reach` at η0 = 1 − bend_extent with zero slope, then blends smoothly
+/// (C1) to the inner end's own offset inner.z − outer.z (usually equal to
+/// `reach`: a radial line). bend_extent = 2|reach| / Δr makes it leave `outer` at 45°.
+struct Transversal {
+  Point inner, outer;
+  double bend_extent = 0, reach = 0;
+  int groove = -1, arc_index = -1;  // `outer` is node arc_index of that groove's circle, if any
+  bool bottom_cap_face = false, top_cap_face = false;
+
+  Point at(double eta) const {
+    if (bend_extent <= 0) return inner + eta * (outer - inner);
+    const double eta0 = 1 - bend_extent, inner_offset = inner.y() - outer.y();
+    double offset;
+    if (eta >= eta0) {
+      const double s = (eta - eta0) / bend_extent;
+      offset = reach * (1 - s * s);
+    } else {
+      const double t = eta / eta0, smooth = t * t * (3 - 2 * t);
+      offset = inner_offset + (reach - inner_offset) * smooth;
+    }
+    return {inner.x() + eta * (outer.x() - inner.x()), outer.y() + offset};
+  }
+  /// Deviation of the line from the straight chord inner–outer (transfinite interpolation).
+  Point bend(double eta) const { return at(eta) - (inner + eta * (outer - inner)); }
+};
+
+class RraMesher {
+ public:
+  RraMesher(const RraDesign& d, int level) : d_(d), sizes_(rra_mesh_sizes(d, level)), profile_(d) {
+    for (int k = 1; k <= d.ring_count; ++k) {
+      const double z = d.ring_centre_z(k);
+      grooves_.push_back({Point(d.outer_radius(z), z), d.ring_section_radius(), sizes_.groove_segments});
+    }
+  }
+
+  Mesh build() {
+    const std::vector<Transversal> keys = key_transversals();
+    build_wall(keys);
+    const auto bottom_core = build_core(0, bottom_cap_column_, sizes_.core_layers_bottom);
+    const auto top_core = build_core(top_cap_column_, static_cast<int>(columns_.size()) - 1, sizes_.core_layers_top);
+    for (std::size_t k = 0; k < grooves_.size(); ++k) build_ring(grooves_[k], arc_nodes_[k]);
+
+    Mesh mesh = builder_.finish({"tube", "rings"});
+    add_node_sets(mesh, bottom_core, top_core);
+    add_chamber(mesh, bottom_core.back(), top_core.front());
+    return mesh;
+  }
+
+ private:
+  Point chamber_point(double z) const { return {d_.chamber_radius(z), z}; }
+  int refined(double length) const {
+    const double h1 = sizes_.element_size_mm * sizes_.refinement;
+    return std::max(1, static_cast<int>(std::lround(length / h1))) * sizes_.refinement;
+  }
+
+  /// The line from a lip (side 0: lower, 1: upper), bending `reach` into the
+  /// neighbouring gap, away from the groove, and ending `inner_distance` from
+  /// the lip on the chamber line (= reach, unless a cap face is moved onto it).
+  Transversal lip_transversal(int k, int side, double reach, double inner_distance) const {
+    const Groove& g = grooves_[static_cast<std::size_t>(k)];
+    const double away = side == 0 ? -1.0 : 1.0;
+    Transversal t;
+    t.outer = Point(g.centre.x(), g.lip_z(side));
+    t.inner = chamber_point(t.outer.y() + away * inner_distance);
+    t.reach = away * reach;
+    t.bend_extent = std::min(1.0, 2 * reach / (t.outer.x() - t.inner.x()));
+    t.groove = k;
+    t.arc_index = side == 0 ? 0 : g.segments;
+    return t;
+  }
+
+  /// The block boundaries across the wall, ordered along z.
+  std::vector<Transversal> key_transversals() const {
+    const int n = static_cast<int>(grooves_.size());
+    // Bend reach of each lip (index 2k + side): a fraction of the wall width,
+    // and at most a quarter of the gap it bends into, so the two lines bending
+    // into one gap keep at least a quarter of it between their inner ends even
+    // when one of them is moved onto a cap face (up to twice its reach).
+    std::vector<double> reach(static_cast<std::size_t>(2 * n));
+    for (int k = 0; k < n; ++k)
+      for (int side = 0; side < 2; ++side) {
+        const Groove& g = grooves_[static_cast<std::size_t>(k)];
+        const double z = g.lip_z(side);
+        const double neighbour = side == 0 ? (k == 0 ? 0.0 : grooves_[static_cast<std::size_t>(k - 1)].lip_z(1))
+                                           : (k == n - 1 ? d_.length_mm : grooves_[static_cast<std::size_t>(k + 1)].lip_z(0));
+        const double wall = g.centre.x() - d_.chamber_radius(z);
+        reach[static_cast<std::size_t>(2 * k + side)] = std::min(lip_bend_fraction * wall, std::abs(neighbour - z) / 4);
+      }
+
+    std::vector<Transversal> keys;
+    std::vector<double> inner_distance(reach);
+    std::vector<int> lip_cap_face(static_cast<std::size_t>(2 * n), 0);  // 1 bottom, 2 top: merged cap face
+    for (int face = 0; face < 2; ++face) {
+      const double z_cap = face == 0 ? d_.end_cap_thickness_mm : d_.length_mm - d_.end_cap_thickness_mm;
+      if (auto t = cap_face_transversal(z_cap, reach, inner_distance, lip_cap_face, face)) {
+        (face == 0 ? t->bottom_cap_face : t->top_cap_face) = true;
+        keys.push_back(*t);
+      }
+    }
+    keys.push_back({chamber_point(0), Point(d_.bottom_radius_mm, 0)});
+    keys.push_back({chamber_point(d_.length_mm), Point(d_.top_radius_mm, d_.length_mm)});
+    for (int k = 0; k < n; ++k)
+      for (int side = 0; side < 2; ++side) {
+        const auto i = static_cast<std::size_t>(2 * k + side);
+        Transversal t = lip_transversal(k, side, reach[i], inner_distance[i]);
+        t.bottom_cap_face = lip_cap_face[i] == 1;
+        t.top_cap_face = lip_cap_face[i] == 2;
+        keys.push_back(t);
+      }
+    std::sort(keys.begin(), keys.end(), [](const Transversal& a, const Transversal& b) { return a.outer.y() < b.outer.y(); });
+    for (std::size_t i = 0; i + 1 < keys.size(); ++i)
+      if (!(keys[i].outer.y() < keys[i + 1].outer.y() && keys[i].inner.y() < keys[i + 1].inner.y()))
+        throw InputError("geometry", "cannot lay out a mesh at level " + std::to_string(level()) +
+                                         ": mesh blocks near z = " + std::to_string(keys[i].outer.y()) +
+                                         " mm cross (is the chamber shorter than one groove segment?)");
+    return keys;
+  }
+
+  /// The transversal ending on the cap's inner face z = z_cap. Inside a groove it
+  /// runs to the level-1 groove node nearest in z, so that every level has the
+  /// same blocks and halves the previous level's elements exactly. Within twice
+  /// a lip's bend reach of that lip, on its gap side, the lip's own line ends on
+  /// the cap face instead (a separate line there would cross it, or leave a
+  /// sliver between the two); it still leaves the lip at 45°. Returns nothing
+  /// when merged into a lip.
+  std::optional<Transversal> cap_face_transversal(double z_cap, const std::vector<double>& reach,
+                                                  std::vector<double>& inner_distance,
+                                                  std::vector<int>& lip_cap_face, int face) const {
+    for (std::size_t k = 0; k < grooves_.size(); ++k) {
+      const Groove& g = grooves_[k];
+      if (!(g.lip_z(0) < z_cap && z_cap < g.lip_z(1))) continue;
+      const int f = sizes_.refinement;
+      int best = f;
+      for (int q = 2 * f; q < g.segments; q += f)
+        if (std::abs(g.arc_point(q).y() - z_cap) < std::abs(g.arc_point(best).y() - z_cap)) best = q;
+      Transversal t{chamber_point(z_cap), g.arc_point(best)};
+      t.groove = static_cast<int>(k);
+      t.arc_index = best;
+      return t;
+    }
+    for (std::size_t i = 0; i < reach.size(); ++i) {
+      const int side = static_cast<int>(i % 2);
+      const double lip = grooves_[i / 2].lip_z(side);
+      const double distance = side == 0 ? lip - z_cap : z_cap - lip;  // measured into the gap it bends into
+      if (distance < 0 || distance >= 2 * reach[i]) continue;
+      if (lip_cap_face[i] != 0)
+        throw InputError("geometry", "cannot lay out a mesh: both cap faces end on the lip at z = " +
+                                         std::to_string(lip) + " mm (the chamber is too short)");
+      inner_distance[i] = distance;
+      lip_cap_face[i] = face + 1;
+      return std::nullopt;
+    }
+    return Transversal{chamber_point(z_cap), Point(profile_.radius(z_cap), z_cap)};
+  }
+
+  /// The wall strip: blocks between consecutive key transversals, each filled by
+  /// transfinite interpolation of its four sides (bottom: the chamber line, top:
+  /// the outer surface or a groove arc, sides: the two key transversals).
+  void build_wall(const std::vector<Transversal>& keys) {
+    arc_nodes_.assign(grooves_.size(), std::vector<int>(static_cast<std::size_t>(sizes_.groove_segments) + 1, -1));
+    add_column(keys.front(), [&](double eta) { return keys.front().at(eta); });
+    for (std::size_t b = 0; b + 1 < keys.size(); ++b) {
+      const Transversal& A = keys[b];
+      const Transversal& B = keys[b + 1];
+      const bool on_arc = A.groove >= 0 && A.groove == B.groove && A.arc_index < B.arc_index;
+      const int n = on_arc ? B.arc_index - A.arc_index
+                           : refined(0.5 * ((B.outer - A.outer).norm() + (B.inner - A.inner).norm()));
+      for (int j = 1; j < n; ++j) {
+        const double xi = static_cast<double>(j) / n;
+        const Point bottom = chamber_point(A.inner.y() + xi * (B.inner.y() - A.inner.y()));
+        const Point top = on_arc ? grooves_[static_cast<std::size_t>(A.groove)].arc_point(A.arc_index + j)
+                                 : Point(A.outer + xi * (B.outer - A.outer));
+        Transversal column{bottom, top};
+        if (on_arc) {
+          column.groove = A.groove;
+          column.arc_index = A.arc_index + j;
+        }
+        add_column(column, [&](double eta) -> Point {
+          return (1 - eta) * bottom + eta * top + (1 - xi) * A.bend(eta) + xi * B.bend(eta);
+        });
+      }
+      add_column(B, [&](double eta) { return B.at(eta); });
+    }
+    if (bottom_cap_column_ < 0 || top_cap_column_ < 0) throw std::logic_error("mesh_rra: cap face not on a column");
+    for (const auto& nodes : arc_nodes_)
+      if (std::count(nodes.begin(), nodes.end(), -1) > 0) throw std::logic_error("mesh_rra: groove node missing");
+  }
+
+  /// Adds one column of wall nodes at η = i / wall_layers (exact ends) and the
+  /// elements joining it to the previous column.
+  template <class Position>
+  void add_column(const Transversal& line, Position position) {
+    const int layers = sizes_.wall_layers;
+    std::vector<int> ids;
+    for (int i = 0; i <= layers; ++i)
+      ids.push_back(builder_.add_node(i == 0 ? line.inner : i == layers ? line.outer : position(double(i) / layers)));
+    if (line.groove >= 0) arc_nodes_[static_cast<std::size_t>(line.groove)][static_cast<std::size_t>(line.arc_index)] = ids.back();
+    const int column = static_cast<int>(columns_.size());
+    if (line.bottom_cap_face) bottom_cap_column_ = column;
+    if (line.top_cap_face) top_cap_column_ = column;
+    if (!columns_.empty()) builder_.add_grid({columns_.back(), ids}, tube_part);
+    columns_.push_back(std::move(ids));
+  }
+
+  /// Solid core of an end cap, r ∈ [0, r_c(z)], on wall columns first..last:
+  /// lines of constant z from the axis to the wall's inner node. Returns the
+  /// lines (axis node first), bottom to top.
+  std::vector<std::vector<int>> build_core(int first, int last, int layers) {
+    std::vector<std::vector<int>> lines;
+    for (int J = first; J <= last; ++J) {
+      const int wall_node = columns_[static_cast<std::size_t>(J)].front();
+      const Point edge = builder_.node(wall_node);
+      std::vector<int> line;
+      for (int i = 0; i < layers; ++i) line.push_back(builder_.add_node(edge.x() * i / layers, edge.y()));
+      line.push_back(wall_node);
+      lines.push_back(std::move(line));
+    }
+    builder_.add_grid(lines, tube_part);
+    return lines;
+  }
+
+  /// O-grid of one ring: a square core (corners towards the lips, the groove
+  /// bottom and the free side) of q × q quads, and an annulus of straight
+  /// lines from the square's edge nodes to the circle's nodes. The groove half
+  /// of the circle reuses the tube's nodes (the bond).
+  void build_ring(const Groove& g, const std::vector<int>& groove_nodes) {
+    const int q = g.segments / 2, around = 2 * g.segments, layers = sizes_.ring_layers;
+    std::vector<int> circle(groove_nodes);
+    for (int s = g.segments + 1; s < around; ++s) circle.push_back(builder_.add_node(g.arc_point(s)));
+
+    std::array<Point, 4> corner;
+    for (int s = 0; s < 4; ++s) corner[static_cast<std::size_t>(s)] = g.centre + ring_core_fraction * g.rho * Groove::direction(s * pi / 2);
+    std::vector<std::vector<int>> core(static_cast<std::size_t>(q) + 1);  // core[u][v], bilinear on the square
+    for (int u = 0; u <= q; ++u)
+      for (int v = 0; v <= q; ++v) {
+        const double a = double(u) / q, b = double(v) / q;
+        core[static_cast<std::size_t>(u)].push_back(builder_.add_node((1 - a) * (1 - b) * corner[0] + a * (1 - b) * corner[1] +
+                                                                      a * b * corner[2] + (1 - a) * b * corner[3]));
+      }
+    builder_.add_grid(core, ring_part);
+
+    // Square edge node facing circle node s: edges corner0→1, 1→2, 2→3, 3→0 in turn.
+    auto edge_node = [&](int s) {
+      const int side = s / q, t = s % q;
+      const auto at = [&](int u, int v) { return core[static_cast<std::size_t>(u)][static_cast<std::size_t>(v)]; };
+      switch (side) {
+        case 0: return at(t, 0);
+        case 1: return at(q, t);
+        case 2: return at(q - t, q);
+        default: return at(0, q - t);
+      }
+    };
+    std::vector<std::vector<int>> spokes;
+    for (int s = 0; s < around; ++s) {
+      const int inner = edge_node(s), outer = circle[static_cast<std::size_t>(s)];
+      std::vector<int> spoke{inner};
+      for (int l = 1; l < layers; ++l) {
+        const double w = double(l) / layers;
+        spoke.push_back(builder_.add_node((1 - w) * builder_.node(inner) + w * builder_.node(outer)));
+      }
+      spoke.push_back(outer);
+      spokes.push_back(std::move(spoke));
+    }
+    spokes.push_back(spokes.front());
+    builder_.add_grid(spokes, ring_part);
+  }
+
+  void add_node_sets(Mesh& mesh, const std::vector<std::vector<int>>& bottom_core,
+                     const std::vector<std::vector<int>>& top_core) const {
+    auto& sets = mesh.node_sets;
+    for (const auto* core : {&bottom_core, &top_core})
+      for (const auto& line : *core) sets["axis"].push_back(line.front());
+    auto end_face = [&](const std::vector<int>& core_line, const std::vector<int>& wall_column) {
+      std::vector<int> face(core_line.begin(), core_line.end() - 1);  // the last is the wall's inner node
+      face.insert(face.end(), wall_column.begin(), wall_column.end());
+      return face;
+    };
+    sets["bottom"] = end_face(bottom_core.front(), columns_.front());
+    sets["top"] = end_face(top_core.back(), columns_.back());
+    const bool top_fixed = d_.fixed_end == RraDesign::FixedEnd::top;
+    sets["fixed_end"] = sets[top_fixed ? "top" : "bottom"];
+    sets["free_end_centre"] = {top_fixed ? bottom_core.front().front() : top_core.back().front()};
+  }
+
+  /// Chain: axis → along the bottom cap face → up the chamber wall → along the
+  /// top cap face → axis; positive volume because the wall is climbed in +z.
+  void add_chamber(Mesh& mesh, const std::vector<int>& bottom_face, const std::vector<int>& top_face) const {
+    std::vector<int> chain(bottom_face);
+    for (int J = bottom_cap_column_ + 1; J <= top_cap_column_; ++J) chain.push_back(columns_[static_cast<std::size_t>(J)].front());
+    chain.insert(chain.end(), top_face.rbegin() + 1, top_face.rend());
+    Chamber chamber{1, "chamber", {}};
+    for (std::size_t i = 0; i + 1 < chain.size(); ++i) chamber.facets.push_back({chain[i], chain[i + 1]});
+    mesh.chambers.push_back(std::move(chamber));
+  }
+
+  int level() const { return static_cast<int>(std::lround(std::log2(sizes_.refinement))) + 1; }
+
+  const RraDesign& d_;
+  RraMeshSizes sizes_;
+  OuterProfile profile_;
+  std::vector<Groove> grooves_;
+  QuadMeshBuilder builder_;
+  std::vector<std::vector<int>> columns_;    // wall columns along z, each inner → outer
+  std::vector<std::vector<int>> arc_nodes_;  // per groove, its circle nodes 0..segments
+  int bottom_cap_column_ = -1, top_cap_column_ = -1;
+};
+
+}  // namespace
+
+RraMeshSizes rra_mesh_sizes(const RraDesign& d, int level) {
+  if (level < 1 || level > 10) throw std::invalid_argument("mesh_rra: level must be in [1, 10], got " + std::to_string(level));
+  validate(d);
+  RraMeshSizes s;
+  const int f = 1 << (level - 1);
+  const double h1 = d.wall_thickness_mm / 3;
+  auto layers = [&](double length) { return std::max(1, static_cast<int>(std::lround(length / h1))) * f; };
+  s.refinement = f;
+  s.element_size_mm = h1 / f;
+  s.wall_layers = 3 * f;
+  if (d.ring_count > 0) {
+    const int quarter = std::max(2, static_cast<int>(std::ceil(pi * d.ring_section_radius() / (2 * h1) - 1e-9)));
+    s.groove_segments = 2 * quarter * f;
+    // Annulus layers about as thick as the circle's segments are long.
+    s.ring_layers = std::max(1, static_cast<int>(std::lround((1 - ring_core_fraction) * 2 * quarter / pi))) * f;
+  }
+  s.core_layers_bottom = layers(d.chamber_radius(d.end_cap_thickness_mm));
+  s.core_layers_top = layers(d.chamber_radius(d.length_mm - d.end_cap_thickness_mm));
+  return s;
+}
+
+Mesh mesh_rra(const RraDesign& design, int level) { return RraMesher(design, level).build(); }
+
+}  // namespace softarm::fem

@@ -1,0 +1,65 @@
+#pragma once
+// Pressure ramp of one chamber with limit-point detection, shared by every
+// scene that inflates a chamber (RRA now, the 3CA and SPL later).
+//
+// At each converged state the chamber's pressure–volume stiffness
+// dp/dV = 1 / (∇Vᵀ K⁻¹ ∇V) is computed from the tangent (one extra solve).
+// Under pressure control a limit point (ballooning) shows as dp/dV → 0 and
+// the tangent losing positive definiteness; a Newton failure with dp/dV still
+// well above zero is a stall (numerical), not a burst. The two are reported
+// differently: a stall is never passed off as a physical limit.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "fem/forms/chamber_pressure_form.hpp"
+#include "fem/solver/load_stepper.hpp"
+
+namespace softarm::fem {
+
+struct PressureState {
+  double pressure_kPa = 0.0;
+  double chamber_volume_mm3 = 0.0;
+  double pv_stiffness_kPa_per_mm3 = 0.0;   // dp/dV at this state
+  bool tangent_positive_definite = true;
+  int newton_iterations = 0;
+  bool is_output = false;
+};
+
+enum class PathOutcome { completed, limit_point, stalled };
+inline const char* to_string(PathOutcome o) {
+  return o == PathOutcome::completed ? "completed" : o == PathOutcome::limit_point ? "limit_point" : "stalled";
+}
+
+struct LimitPointSettings {
+  /// dp/dV below this fraction of its initial value, at a failed step, means a limit point.
+  double stiffness_fraction = 0.05;
+};
+
+struct PressurePathResult {
+  PathOutcome outcome = PathOutcome::completed;
+  std::string diagnosis;              // human-readable explanation and retry advice
+  double reached_pressure_kPa = 0.0;
+  double estimated_limit_pressure_kPa = 0.0;  // extrapolated peak of p(V) when a limit point is found
+  PathResult path;
+  std::vector<PressureState> history;  // every converged step
+  // Linear-algebra cost of the whole path (for benchmarks).
+  double analyse_s = 0.0, factorize_s = 0.0, solve_s = 0.0;
+  int factorizations = 0;
+};
+
+struct PressurePathSpec {
+  int chamber = 0;
+  double max_pressure_kPa = 0.0;
+  std::vector<double> output_pressures_kPa;  // sorted, the last equals max_pressure_kPa
+  NewtonSettings newton;
+  StepSettings steps;
+  LimitPointSettings limit;
+};
+
+/// Ramps `load.chamber_pressure_MPa[spec.chamber]` from 0; calls `on_state` for every converged step.
+PressurePathResult run_pressure_path(const EnergyProblem& problem, const ChamberPressureForm& chamber, LoadState& load,
+                                     Vector& x, const PressurePathSpec& spec,
+                                     const std::function<void(const PressureState&, const Vector&)>& on_state);
+
+}  // namespace softarm::fem

@@ -1,0 +1,98 @@
+#include "fem/scenes/rra_scene.hpp"
+
+#include <algorithm>
+#include <memory>
+
+#include "fem/assembly/energy_problem.hpp"
+#include "fem/mesh/rra_mesher.hpp"
+
+namespace softarm::fem {
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Axis nodes keep r = 0 (symmetry); the fixed end is clamped.
+DirichletConstraints rra_constraints(const Mesh& mesh) {
+  DirichletConstraints c;
+  std::vector<char> clamped(mesh.num_nodes(), 0);
+  for (int n : mesh.node_sets.at("fixed_end")) {
+    clamped[n] = 1;
+    c.fix(2 * n);
+    c.fix(2 * n + 1);
+  }
+  for (int n : mesh.node_sets.at("axis"))
+    if (!clamped[n]) c.fix(2 * n);
+  return c;
+}
+
+RraCurvePoint curve_point(const PressureState& s, const Mesh& mesh, const AxisymmetricElasticForm& elastic,
+                          const Vector& x, int free_node, double extension_sign) {
+  RraCurvePoint p;
+  p.pressure_kPa = s.pressure_kPa;
+  p.chamber_volume_mm3 = s.chamber_volume_mm3;
+  p.pv_stiffness_kPa_per_mm3 = s.pv_stiffness_kPa_per_mm3;
+  p.newton_iterations = s.newton_iterations;
+  p.extension_mm = extension_sign * (x[2 * free_node + 1] - mesh.X(free_node, 1));
+  const int tube = mesh.part_index("tube"), rings = mesh.part_index("rings");
+  const auto results = elastic.element_results(x);
+  for (int e = 0; e < mesh.num_elements(); ++e) {
+    const auto& r = results[e];
+    if (mesh.part[e] == tube) {
+      p.tube_max_stretch = std::max(p.tube_max_stretch, r.max_principal_stretch);
+      p.tube_max_log_strain = std::max(p.tube_max_log_strain, r.max_principal_log_strain);
+      p.tube_max_principal_stress_MPa = std::max(p.tube_max_principal_stress_MPa, r.max_principal_cauchy_MPa);
+    } else if (mesh.part[e] == rings) {
+      p.ring_max_principal_stress_MPa = std::max(p.ring_max_principal_stress_MPa, r.max_principal_cauchy_MPa);
+    }
+  }
+  return p;
+}
+}  // namespace
+
+RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress) {
+  const auto t_start = Clock::now();
+  RraResult out;
+  validate(spec.design);
+  out.mesh = mesh_rra(spec.design, spec.mesh_level);
+  const Mesh& mesh = out.mesh;
+  out.timings.mesh_s = since(t_start);
+
+  const auto t_setup = Clock::now();
+  std::vector<Material> materials(mesh.part_names.size(), spec.tube_material);
+  if (const int rings = mesh.part_index("rings"); rings >= 0) materials[rings] = spec.ring_material;
+  auto elastic = std::make_shared<AxisymmetricElasticForm>(mesh, materials, spec.treatment);
+  LoadState load;
+  load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
+  auto chamber = std::make_shared<ChamberPressureForm>(mesh, spec.path.chamber, load);
+  EnergyProblem problem(flattened_positions(mesh), rra_constraints(mesh));
+  problem.add_form(elastic);
+  problem.add_form(chamber);
+  problem.finalize();
+  out.dofs = problem.num_dofs();
+  const auto masses = elastic->part_masses_kg();
+  out.tube_mass_kg = masses[mesh.part_index("tube")];
+  if (const int rings = mesh.part_index("rings"); rings >= 0) out.ring_mass_kg = masses[rings];
+  out.timings.setup_s = since(t_setup);
+
+  const int free_node = mesh.node_sets.at("free_end_centre").front();
+  const double sign = spec.design.fixed_end == RraDesign::FixedEnd::top ? -1.0 : 1.0;
+  Vector x = problem.reference_positions();
+  const auto t_solve = Clock::now();
+  out.path = run_pressure_path(problem, *chamber, load, x, spec.path, [&](const PressureState& s, const Vector& xs) {
+    if (!s.is_output) return;
+    out.curve.push_back(curve_point(s, mesh, *elastic, xs, free_node, sign));
+    if (progress) progress(out.curve.back());
+  });
+  // A path that stopped early also reports the last state it reached.
+  if (out.path.outcome != PathOutcome::completed && !out.path.history.back().is_output)
+    out.curve.push_back(curve_point(out.path.history.back(), mesh, *elastic, x, free_node, sign));
+  out.timings.solve_s = since(t_solve);
+  out.timings.assembly_s = problem.assembly_seconds();
+  out.timings.evaluations = problem.evaluations();
+  out.final_positions = x;
+  out.final_element_results = elastic->element_results(x);
+  out.timings.total_s = since(t_start);
+  return out;
+}
+
+}  // namespace softarm::fem

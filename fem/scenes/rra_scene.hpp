@@ -1,0 +1,56 @@
+#pragma once
+// The ring-reinforced actuator (RRA) extension scene: one end fixed, the
+// chamber pressurised quasi-statically, gravity off (thesis Ch. 5: the RRA's
+// mass is negligible). Axisymmetric: a lone RRA under internal pressure is
+// a body of revolution under a load of revolution, so the 2D model is exact
+// in the geometry of revolution and ~100× cheaper than 3D.
+#include <chrono>
+#include <functional>
+#include <vector>
+
+#include "fem/forms/axisymmetric_elastic_form.hpp"
+#include "fem/materials/material.hpp"
+#include "fem/mesh/mesh.hpp"
+#include "fem/mesh/rra_design.hpp"
+#include "fem/scenes/pressure_path.hpp"
+
+namespace softarm::fem {
+
+struct RraSceneSpec {
+  RraDesign design;
+  Material tube_material, ring_material;
+  int mesh_level = 2;
+  VolumetricTreatment treatment = VolumetricTreatment::mean_dilatation;
+  PressurePathSpec path;
+};
+
+/// One state of the pressure–extension curve.
+struct RraCurvePoint {
+  double pressure_kPa = 0, extension_mm = 0, chamber_volume_mm3 = 0, pv_stiffness_kPa_per_mm3 = 0;
+  double tube_max_stretch = 1, tube_max_principal_stress_MPa = 0, ring_max_principal_stress_MPa = 0;
+  double tube_max_log_strain = 0;
+  int newton_iterations = 0;
+};
+
+struct RraTimings {
+  double mesh_s = 0, setup_s = 0, solve_s = 0, total_s = 0;  // wall-clock seconds
+  double assembly_s = 0;  // inside solve_s: energy, gradient and Hessian evaluations
+  int evaluations = 0;
+};
+
+struct RraResult {
+  Mesh mesh;
+  std::vector<RraCurvePoint> curve;     // at the requested output pressures (and the last reached state)
+  PressurePathResult path;
+  Vector final_positions;
+  std::vector<ElementResult> final_element_results;
+  double tube_mass_kg = 0, ring_mass_kg = 0;
+  int dofs = 0;
+  RraTimings timings;
+};
+
+using RraProgress = std::function<void(const RraCurvePoint&)>;
+
+RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress = {});
+
+}  // namespace softarm::fem

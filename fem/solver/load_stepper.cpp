@@ -1,0 +1,79 @@
+#include "fem/solver/load_stepper.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+namespace softarm::fem {
+
+PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolver& solver,
+                            const std::vector<double>& output_levels, const PathCallbacks& callbacks,
+                            const NewtonSettings& newton, const StepSettings& settings) {
+  PathResult result;
+  double level = 0.0, previous_level = 0.0;
+  Vector previous_x = x;
+  bool have_previous = false;
+  double increment = settings.initial_increment;
+  std::size_t next_output = 0;
+  constexpr double kLandingTolerance = 1e-12;
+
+  // One step to next_level: with the secant predictor first, then (if that
+  // fails and a predictor was used) from the last converged state.
+  auto try_step = [&](double next_level, bool lands) {
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      const bool predict = attempt == 0 && have_previous && level > previous_level;
+      Vector trial = x;
+      if (predict) trial = x + (next_level - level) / (level - previous_level) * (x - previous_x);
+      problem.apply_constraints(trial, next_level);
+      NewtonReport report = solve_newton(problem, trial, solver, newton);
+      result.stats.newton_iterations += report.iterations;
+      if (settings.verbose) {
+        std::cout << "  step to level " << next_level << (predict ? "" : " (no predictor)") << "\n";
+        print_convergence_table(std::cout, report);
+      }
+      if (!report.converged) {
+        result.failure = report.failure;
+        result.message = report.message;
+        if (!predict) return false;  // the plain start failed too: nothing else to retry
+        continue;
+      }
+      previous_x = x;
+      previous_level = level;
+      have_previous = true;
+      x = std::move(trial);
+      level = next_level;
+      ++result.stats.steps;
+      result.reached_level = level;
+      result.last_tangent_positive_definite = report.tangent_positive_definite;
+      if (lands) ++next_output;
+      if (callbacks.on_converged) callbacks.on_converged(level, x, lands, report);
+      if (report.iterations <= settings.easy_iterations) increment = std::min(increment * settings.growth, settings.max_increment);
+      if (report.iterations >= settings.hard_iterations) increment *= settings.shrink;
+      return true;
+    }
+    return false;
+  };
+
+  while (next_output < output_levels.size()) {
+    const double target = output_levels[next_output];
+    const double trial_level = std::min(level + increment, target);
+    const bool lands = target - trial_level <= kLandingTolerance;
+    const double next_level = lands ? target : trial_level;
+
+    callbacks.apply_load(next_level);
+    if (try_step(next_level, lands)) continue;
+    // Every attempt failed: cut back from the last converged state.
+    ++result.stats.cutbacks;
+    increment = (next_level - level) * settings.cutback;
+    if (increment < settings.min_increment) {
+      callbacks.apply_load(level);
+      return result;
+    }
+  }
+  result.completed = true;
+  result.failure = Failure::none;
+  result.message.clear();
+  return result;
+}
+
+}  // namespace softarm::fem

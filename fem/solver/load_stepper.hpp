@@ -1,0 +1,52 @@
+#pragma once
+// Adaptive load stepping along a load level λ ∈ [0, 1] (FEBio's step
+// controller): lands exactly on every requested output level, grows the step
+// after easy convergence, shrinks it after hard convergence, and on any typed
+// failure restores the last converged state and cuts the step back. The
+// predictor extrapolates the last two converged states (secant); if the
+// predicted state is inadmissible the step is retried from the last state.
+// A path that cannot be continued returns what it reached and why.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "fem/solver/newton.hpp"
+
+namespace softarm::fem {
+
+struct StepSettings {
+  double initial_increment = 0.1;   // first Δλ
+  double min_increment = 1e-5;      // below this the path is declared stuck
+  double max_increment = 0.25;
+  int easy_iterations = 4;          // converged in ≤ this: grow Δλ
+  int hard_iterations = 9;          // converged in ≥ this: shrink Δλ
+  double growth = 1.5, shrink = 0.7, cutback = 0.25;
+  bool verbose = false;             // print the Newton convergence table of every step
+};
+
+struct PathStatistics {
+  int steps = 0, newton_iterations = 0, cutbacks = 0;
+};
+
+struct PathResult {
+  bool completed = false;
+  double reached_level = 0.0;       // last converged λ
+  Failure failure = Failure::none;  // last failure when not completed
+  std::string message;
+  bool last_tangent_positive_definite = true;
+  PathStatistics stats;
+};
+
+struct PathCallbacks {
+  /// Sets the loads (pressures, prescribed-displacement scale, …) for level λ.
+  std::function<void(double level)> apply_load;
+  /// Called after each converged step; `is_output` marks requested levels.
+  std::function<void(double level, const Vector& x, bool is_output, const NewtonReport& report)> on_converged;
+};
+
+/// Follows the path from the converged state x at level 0 through the sorted output levels (the last is the end).
+PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolver& solver,
+                            const std::vector<double>& output_levels, const PathCallbacks& callbacks,
+                            const NewtonSettings& newton, const StepSettings& steps);
+
+}  // namespace softarm::fem

@@ -1,0 +1,112 @@
+#include "fem/solver/newton.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace softarm::fem {
+namespace {
+std::string scientific(double v) {
+  std::ostringstream s;
+  s << std::scientific << std::setprecision(2) << v;
+  return s.str();
+}
+}  // namespace
+
+NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver& solver,
+                          const NewtonSettings& settings) {
+  NewtonReport report;
+  const Vector& X = problem.reference_positions();
+  Evaluation cur = problem.evaluate(x, true, true);
+  if (!cur.status.ok) {
+    report.failure = Failure::inverted_element;
+    report.message = cur.status.reason + " at element " + std::to_string(cur.status.element);
+    return report;
+  }
+  double scale = 0.0, energy_norm0 = 0.0, last_update = 1e300, last_energy_norm = 1e300;
+  for (int it = 0;; ++it) {
+    const double rnorm = cur.gradient.norm();
+    if (!std::isfinite(rnorm)) {
+      report.failure = Failure::diverged;
+      report.message = "non-finite residual";
+      break;
+    }
+    if (it == 0) scale = std::max({rnorm, cur.load_norm, 1e-300});
+    const double rel_res = rnorm / scale;
+    if (!report.rows.empty()) report.rows.back().residual = rel_res;
+    const bool residual_ok = rel_res <= settings.residual_tolerance;
+    const bool update_ok = last_update <= settings.update_tolerance;
+    const bool energy_ok = last_energy_norm <= settings.energy_tolerance;
+    // Either the residual is small and the iterates have settled, or the
+    // residual sits on its round-off floor (stiff rings next to soft silicone
+    // put it near 1e-8) while update and energy norm are both at machine level.
+    if ((residual_ok && (it == 0 || update_ok || energy_ok)) || (update_ok && energy_ok)) {
+      report.converged = true;
+      break;
+    }
+    if (rnorm > settings.divergence_factor * scale) {
+      report.failure = Failure::diverged;
+      report.message = "residual grew to " + scientific(rel_res) + " times its initial value";
+      break;
+    }
+    if (it >= settings.max_iterations) {
+      report.failure = Failure::max_iterations;
+      report.message = "no convergence in " + std::to_string(settings.max_iterations) +
+                       " iterations (relative residual " + scientific(rel_res) + ")";
+      break;
+    }
+    const auto status = solver.factorize(cur.hessian);
+    report.tangent_positive_definite = status == LinearSolver::Status::positive_definite;
+    if (status == LinearSolver::Status::singular) {
+      report.failure = Failure::singular_tangent;
+      report.message = "tangent matrix is singular";
+      break;
+    }
+    Vector dx = -solver.solve(cur.gradient);
+    problem.zero_prescribed(dx);
+    const double slope = cur.gradient.dot(dx);  // directional derivative of Π along dx
+    // Backtracking: accept the first step that lowers the energy (Armijo) or,
+    // when energy differences drown in round-off near convergence, the residual.
+    double alpha = 1.0;
+    bool accepted = false;
+    Evaluation trial;
+    for (int ls = 0; ls < settings.max_line_search; ++ls, alpha *= 0.5) {
+      trial = problem.evaluate(x + alpha * dx, true, true);
+      if (!trial.status.ok) continue;
+      const double roundoff = 1e-12 * (std::abs(cur.energy) + std::abs(trial.energy));
+      const bool armijo = trial.energy <= cur.energy + 1e-4 * alpha * std::min(slope, 0.0) + roundoff;
+      if (armijo || trial.gradient.norm() < rnorm) {
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted) {
+      report.failure = trial.status.ok ? Failure::line_search_failed : Failure::inverted_element;
+      report.message = trial.status.ok ? "line search found no decrease along the Newton direction"
+                                       : trial.status.reason + " for every step length tried";
+      break;
+    }
+    x += alpha * dx;
+    const double energy_norm = std::abs(slope) * alpha;
+    if (it == 0) energy_norm0 = std::max(energy_norm, 1e-300);
+    last_update = alpha * dx.norm() / std::max((x - X).norm(), 1e-3);
+    last_energy_norm = energy_norm / energy_norm0;
+    report.rows.push_back({it + 1, 0.0, last_update, last_energy_norm, alpha, report.tangent_positive_definite});
+    cur = std::move(trial);
+    report.iterations = it + 1;
+  }
+  report.last = std::move(cur);
+  return report;
+}
+
+void print_convergence_table(std::ostream& out, const NewtonReport& r) {
+  out << "    it   |r|/|r0|     |dx|/|u|    |dx.r|/|.|0   step  tangent\n";
+  for (const auto& row : r.rows)
+    out << "    " << std::setw(2) << row.iteration << std::scientific << std::setprecision(3) << "  " << row.residual
+        << "  " << row.update << "  " << row.energy_norm << std::fixed << std::setprecision(2) << "  " << row.step_length
+        << "  " << (row.positive_definite ? "SPD" : "indefinite") << "\n";
+  out << "    " << (r.converged ? "converged" : std::string("failed: ") + to_string(r.failure) + " (" + r.message + ")")
+      << "\n";
+}
+
+}  // namespace softarm::fem

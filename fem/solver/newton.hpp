@@ -1,0 +1,49 @@
+#pragma once
+// Newton–Raphson on the total potential energy with a backtracking line
+// search. Convergence (deal.II step-44 style): the residual normalised by the
+// larger of the first iteration's residual and the load's force scale, AND
+// either the update normalised by the displacement or the energy norm |δx·r|
+// normalised by its first value; or, when the residual sits on its round-off
+// floor, update and energy norm both below tolerance. One row per iteration is kept for the
+// convergence table.
+#include <ostream>
+#include <vector>
+
+#include "fem/assembly/energy_problem.hpp"
+#include "fem/solver/failure.hpp"
+#include "fem/solver/linear_solver.hpp"
+
+namespace softarm::fem {
+
+struct NewtonSettings {
+  int max_iterations = 20;
+  double residual_tolerance = 1e-8;   // ‖r‖ / max(‖r₀‖, ‖f_load‖)
+  double update_tolerance = 1e-8;     // ‖δx‖ / max(‖x − X‖, 1e-3 mm)
+  double energy_tolerance = 1e-16;    // |δx·r| / |δx₀·r₀|
+  int max_line_search = 12;
+  double divergence_factor = 1e6;     // ‖r‖ > factor · scale → diverged
+};
+
+struct NewtonRow {
+  int iteration;
+  double residual, update, energy_norm, step_length;
+  bool positive_definite;
+};
+
+struct NewtonReport {
+  bool converged = false;
+  Failure failure = Failure::none;
+  std::string message;
+  int iterations = 0;
+  bool tangent_positive_definite = true;  // at the last factorisation
+  std::vector<NewtonRow> rows;
+  Evaluation last;                         // evaluation at the returned x
+};
+
+/// Solves ∇Π(x) = 0 from the given x (whose prescribed dofs are already set).
+/// On failure x is left at the last accepted iterate.
+NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver& solver, const NewtonSettings& settings);
+
+void print_convergence_table(std::ostream& out, const NewtonReport& report);
+
+}  // namespace softarm::fem

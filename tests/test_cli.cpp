@@ -1,0 +1,87 @@
+// Bad input through the real command line: each case must exit with code 2
+// and a message that names the offending JSON field — never crash, hang or
+// print NaN.
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+struct RunResult {
+  int exit_code;
+  std::string output;
+};
+
+RunResult run_softarm(const std::string& args) {
+  const auto dir = std::filesystem::temp_directory_path() / "softarm_cli_test";
+  std::filesystem::create_directories(dir);
+  const auto log = dir / "log.txt";
+  const std::string cmd = std::string(SOFTARM_BINARY) + " " + args + " > " + log.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(log);
+  std::stringstream s;
+  s << in.rdbuf();
+  return {WEXITSTATUS(status), s.str()};
+}
+
+std::string write_config(const std::string& name, const std::string& text) {
+  const auto dir = std::filesystem::temp_directory_path() / "softarm_cli_test";
+  std::filesystem::create_directories(dir);
+  const auto path = dir / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+// The thesis RRA with one geometry entry replaced.
+std::string rra_config(const std::string& geometry_override, const std::string& extra = "") {
+  std::string geometry = R"("length_mm": 160, "bottom_radius_mm": 9, "top_radius_mm": 12,
+    "end_cap_thickness_normalised": 0.25, "ring_count_normalised": 0.375)";
+  if (geometry_override.find("wall_thickness") == std::string::npos) geometry += R"(, "wall_thickness_normalised": 0.466)";
+  if (geometry_override.find("ring_thickness") == std::string::npos && geometry_override.find("ring_diameter") == std::string::npos)
+    geometry += R"(, "ring_thickness_normalised": 0.4)";
+  if (!geometry_override.empty()) geometry += ", " + geometry_override;
+  return R"({"scene": "rra", "geometry": {)" + geometry + R"(}, "load": {"max_pressure_kPa": 206.8})" + extra + "}";
+}
+
+void expect_input_error(const std::string& config_text, const std::string& field) {
+  const auto file = write_config("bad.json", config_text);
+  const auto r = run_softarm("simulate " + file + " -o /tmp/softarm_cli_test/out");
+  INFO("config: " << config_text << "\noutput: " << r.output);
+  CHECK(r.exit_code == 2);
+  CHECK(r.output.find(field) != std::string::npos);
+  CHECK(r.output.find("nan") == std::string::npos);
+}
+
+}  // namespace
+
+TEST_CASE("softarm rejects bad scene input with the field named", "[cli]") {
+  SECTION("malformed JSON") {
+    const auto file = write_config("malformed.json", "{\"scene\": \"rra\",\n \"geometry\": {\"length_mm\": 160,,}}");
+    const auto r = run_softarm("simulate " + file);
+    INFO(r.output);
+    CHECK(r.exit_code == 2);
+    CHECK(r.output.find("line 2") != std::string::npos);
+  }
+  SECTION("unknown key") { expect_input_error(rra_config(R"("lenght_mm": 150)"), "geometry.lenght_mm"); }
+  SECTION("negative dimension") { expect_input_error(rra_config(R"("wall_thickness_mm": -1)"), "geometry.wall_thickness_mm"); }
+  SECTION("wall thicker than the radius") {
+    expect_input_error(rra_config(R"("wall_thickness_normalised": 1.2)"), "wall_thickness");
+  }
+  SECTION("rings that do not fit") {
+    expect_input_error(rra_config(R"("ring_thickness_normalised": 1.5)"), "ring_thickness_normalised");
+  }
+  SECTION("unknown material") {
+    expect_input_error(rra_config("", R"(, "materials": {"tube": "dragon_skin_40"})"), "materials.tube");
+  }
+  SECTION("missing required field") {
+    expect_input_error(R"({"scene": "rra", "geometry": {}, "load": {}})", "geometry.");
+  }
+  SECTION("missing file") {
+    const auto r = run_softarm("simulate /nonexistent/scene.json");
+    CHECK(r.exit_code == 2);
+    CHECK(r.output.find("/nonexistent/scene.json") != std::string::npos);
+  }
+}

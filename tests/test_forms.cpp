@@ -1,0 +1,87 @@
+// Element and pressure-load tangents against central finite differences.
+//
+// Tolerances: central differences have truncation error O(h²)·|f'''| and
+// round-off O(ε|f|/h). With coordinates O(1–10 mm), moduli O(0.1–3000 MPa)
+// and h = 1e-6 mm, truncation is ~1e-12 relative and round-off ~1e-16/1e-6 ·
+// (|Π|/|g|) ≈ 1e-9…1e-8 relative, so 1e-6 leaves two orders of margin while
+// any wrong term (a missing geometric stiffness, a sign) shows as O(1).
+#include <catch2/catch.hpp>
+
+#include "fem/forms/axisymmetric_elastic_form.hpp"
+#include "fem/forms/chamber_pressure_form.hpp"
+#include "fem/mesh/structured_mesh.hpp"
+#include "support/test_problems.hpp"
+
+using namespace softarm;
+using namespace softarm::fem;
+
+namespace {
+
+// A distorted 3×3 patch of a thick tube (r from 2 to 5 mm), bottom fixed axially.
+struct Patch {
+  Mesh mesh;
+  LoadState load;
+  std::unique_ptr<EnergyProblem> problem;
+};
+
+std::unique_ptr<Patch> make_patch(const std::vector<Material>& materials, VolumetricTreatment treatment,
+                                  double pressure_MPa) {
+  auto p = std::make_unique<Patch>();
+  p->mesh = rectangle_mesh(2.0, 5.0, 0.0, 3.0, 3, 3, 0.2);
+  p->load.chamber_pressure_MPa = {pressure_MPa};
+  DirichletConstraints c;
+  for (int n : p->mesh.node_sets.at("bottom")) c.fix(2 * n + 1);
+  p->problem = std::make_unique<EnergyProblem>(flattened_positions(p->mesh), c);
+  std::vector<Material> parts(p->mesh.part_names.size(), materials.front());
+  p->problem->add_form(std::make_shared<AxisymmetricElasticForm>(p->mesh, parts, treatment));
+  if (pressure_MPa != 0.0) p->problem->add_form(std::make_shared<ChamberPressureForm>(p->mesh, 0, p->load));
+  p->problem->finalize();
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("axisymmetric elastic form: gradient and Hessian match finite differences", "[forms]") {
+  const double h = 1e-6;
+  struct Case {
+    const char* name;
+    Material material;
+    VolumetricTreatment treatment;
+  };
+  const std::vector<Case> cases = {
+      {"Ogden DS30, mean dilatation", test::dragon_skin_30_ogden(2.0 / 0.7029), VolumetricTreatment::mean_dilatation},
+      {"Ogden DS30, pointwise", test::dragon_skin_30_ogden(2.0 / 0.7029), VolumetricTreatment::pointwise},
+      {"neo-Hookean nearly incompressible", test::neo_hookean(1.0, 1000.0), VolumetricTreatment::mean_dilatation},
+      {"St Venant-Kirchhoff (ABS)", test::abs_plastic(), VolumetricTreatment::mean_dilatation},
+  };
+  for (const auto& c : cases) {
+    auto patch = make_patch({c.material}, c.treatment, 0.0);
+    // A large, non-homogeneous deformation (up to ±0.4 mm on 1 mm elements).
+    const Vector x = test::perturbed(patch->problem->reference_positions(), 0.4);
+    const auto err = test::finite_difference_errors(*patch->problem, x, h);
+    INFO(c.name << ": gradient error " << err.gradient << ", Hessian error " << err.hessian);
+    CHECK(err.gradient < 1e-6);
+    CHECK(err.hessian < 1e-6);
+  }
+}
+
+TEST_CASE("chamber pressure form: exact volume, gradient and load stiffness", "[forms]") {
+  const Mesh mesh = rectangle_mesh(2.0, 5.0, 0.0, 3.0, 3, 3, 0.2);
+  LoadState load;
+  load.chamber_pressure_MPa = {0.3};
+  // The pressure form alone, so that its load stiffness is not hidden behind the elastic one.
+  EnergyProblem problem(flattened_positions(mesh), DirichletConstraints{});
+  auto chamber = std::make_shared<ChamberPressureForm>(mesh, 0, load);
+  problem.add_form(chamber);
+  problem.finalize();
+  // Reference: the chain along r = 2 from z = 0 to 3 sweeps a cylinder π r² h.
+  CHECK(chamber->volume(problem.reference_positions()) == Approx(3.141592653589793 * 4.0 * 3.0).epsilon(1e-14));
+  const Vector x = test::perturbed(problem.reference_positions(), 0.4, 11);
+  const auto err = test::finite_difference_errors(problem, x, 1e-6);
+  INFO("gradient error " << err.gradient << ", Hessian error " << err.hessian);
+  CHECK(err.gradient < 1e-6);
+  CHECK(err.hessian < 1e-6);
+  // Energy is −p V, so its gradient is −p ∂V/∂x.
+  const auto e = problem.evaluate(x, true, false);
+  CHECK((e.gradient + 0.3 * chamber->volume_gradient(x)).norm() < 1e-12 * e.gradient.norm());
+}

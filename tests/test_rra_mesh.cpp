@@ -1,0 +1,462 @@
+// RRA design input, the axisymmetric RRA mesher, the structured test mesher
+// and the VTU writer (spec §1: geometry "our definition").
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <numbers>
+#include <numeric>
+#include <set>
+#include <sstream>
+#include <unistd.h>
+
+#include "fem/core/input_error.hpp"
+#include "fem/core/json_reader.hpp"
+#include "fem/io/vtu_writer.hpp"
+#include "fem/mesh/rra_design.hpp"
+#include "fem/mesh/rra_mesher.hpp"
+#include "fem/mesh/structured_mesh.hpp"
+
+using namespace softarm::fem;
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+RraDesign thesis_rra() {  // Table 7, in physical units
+  RraDesign d;
+  d.length_mm = 160;
+  d.bottom_radius_mm = 9;
+  d.top_radius_mm = 12;
+  d.wall_thickness_mm = 0.466 * 9;
+  d.end_cap_thickness_mm = 0.25 * 9;
+  d.ring_count = 30;
+  d.ring_diameter_mm = 0.4 * 160.0 / 30;
+  return d;
+}
+
+/// The thesis RRA and the extremes of the thesis' parameter studies (spec §5).
+std::vector<std::pair<std::string, RraDesign>> test_designs() {
+  std::vector<std::pair<std::string, RraDesign>> designs{{"thesis", thesis_rra()}};
+  auto variant = [&](const std::string& name, const std::function<void(RraDesign&)>& change) {
+    RraDesign d = thesis_rra();
+    change(d);
+    designs.emplace_back(name, d);
+  };
+  variant("no rings", [](RraDesign& d) { d.ring_count = 0; d.ring_diameter_mm = 0; });
+  variant("ring thickness 0.95", [](RraDesign& d) { d.ring_diameter_mm = 0.95 * d.pitch(); });
+  variant("ring count 0.625 (50 rings)", [](RraDesign& d) { d.ring_count = 50; d.ring_diameter_mm = 0.4 * d.pitch(); });
+  variant("cap 0.05", [](RraDesign& d) { d.end_cap_thickness_mm = 0.05 * 9; });
+  variant("cap 0.75", [](RraDesign& d) { d.end_cap_thickness_mm = 0.75 * 9; });
+  variant("wall 0.733", [](RraDesign& d) { d.wall_thickness_mm = 0.733 * 9; });
+  variant("wall 0.2", [](RraDesign& d) { d.wall_thickness_mm = 0.2 * 9; });
+  variant("reverse taper", [](RraDesign& d) { std::swap(d.bottom_radius_mm, d.top_radius_mm); });
+  return designs;
+}
+
+Eigen::Vector2d node(const Mesh& m, int n) { return m.X.row(n).transpose(); }
+
+/// Calls f(r, det J) at the 2×2 Gauss points of element e (weights 1).
+template <class F>
+void at_gauss_points(const Mesh& m, int e, F f) {
+  const int* n = m.element(e);
+  const Eigen::Vector2d p0 = node(m, n[0]), p1 = node(m, n[1]), p2 = node(m, n[2]), p3 = node(m, n[3]);
+  const double g = 1 / std::sqrt(3.0);
+  for (double xi : {-g, g})
+    for (double eta : {-g, g}) {
+      const Eigen::Vector2d d_xi = 0.25 * ((1 - eta) * (p1 - p0) + (1 + eta) * (p2 - p3));
+      const Eigen::Vector2d d_eta = 0.25 * ((1 - xi) * (p3 - p0) + (1 + xi) * (p2 - p1));
+      const double r = 0.25 * ((1 - xi) * (1 - eta) * p0.x() + (1 + xi) * (1 - eta) * p1.x() +
+                               (1 + xi) * (1 + eta) * p2.x() + (1 - xi) * (1 + eta) * p3.x());
+      f(r, d_xi.x() * d_eta.y() - d_xi.y() * d_eta.x());
+    }
+}
+
+double min_jacobian(const Mesh& m) {
+  double lowest = 1e300;
+  for (int e = 0; e < m.num_elements(); ++e) at_gauss_points(m, e, [&](double, double det) { lowest = std::min(lowest, det); });
+  return lowest;
+}
+
+/// 2π ∫ r dA of the elements accepted by `keep` (exact for bilinear quads with 2×2 Gauss).
+double volume(const Mesh& m, const std::function<bool(int)>& keep) {
+  double v = 0;
+  for (int e = 0; e < m.num_elements(); ++e)
+    if (keep(e)) at_gauss_points(m, e, [&](double r, double det) { v += 2 * pi * r * det; });
+  return v;
+}
+double part_volume(const Mesh& m, int part) { return volume(m, [&](int e) { return m.part[e] == part; }); }
+
+double frustum(double height, double r1, double r2) { return pi * height * (r1 * r1 + r1 * r2 + r2 * r2) / 3; }
+
+/// Tube volume of the meshed geometry: solid of revolution under the outer
+/// profile (frusta between grooves, through both lips of ring k at R_k; a
+/// cylinder of radius R_k over each groove) minus the half-disc grooves (Pappus:
+/// area πρ²/2 times 2π times the centroid radius R_k − 4ρ/3π) minus the chamber.
+double exact_tube_volume(const RraDesign& d) {
+  const double rho = d.ring_section_radius();
+  double v = 0, z = 0, r = d.bottom_radius_mm;
+  for (int k = 1; k <= d.ring_count; ++k) {
+    const double z_k = d.ring_centre_z(k), R = d.outer_radius(z_k);
+    v += frustum(z_k - rho - z, r, R) + pi * R * R * 2 * rho - 2 * pi * (R - 4 * rho / (3 * pi)) * (pi * rho * rho / 2);
+    z = z_k + rho;
+    r = R;
+  }
+  v += frustum(d.length_mm - z, r, d.top_radius_mm);
+  const double t_c = d.end_cap_thickness_mm;
+  return v - frustum(d.length_mm - 2 * t_c, d.chamber_radius(t_c), d.chamber_radius(d.length_mm - t_c));
+}
+
+/// Largest relative error over the rings of the ring volumes 2π² R_k ρ².
+double worst_ring_volume_error(const Mesh& m, const RraDesign& d) {
+  std::vector<double> v(static_cast<std::size_t>(d.ring_count), 0.0);
+  for (int e = 0; e < m.num_elements(); ++e) {
+    if (m.part[e] != 1) continue;
+    double z = 0;
+    for (int a = 0; a < 4; ++a) z += 0.25 * m.X(m.element(e)[a], 1);
+    const auto k = static_cast<std::size_t>(z / d.pitch());
+    at_gauss_points(m, e, [&](double r, double det) { v[k] += 2 * pi * r * det; });
+  }
+  double worst = 0;
+  const double rho = d.ring_section_radius();
+  for (int k = 1; k <= d.ring_count; ++k) {
+    const double exact = 2 * pi * pi * d.outer_radius(d.ring_centre_z(k)) * rho * rho;
+    worst = std::max(worst, std::abs(v[static_cast<std::size_t>(k - 1)] - exact) / exact);
+  }
+  return worst;
+}
+
+/// Volume enclosed by an axisymmetric chamber chain (mesh.hpp's formula), and a
+/// check that its edges form one chain from the axis back to the axis.
+double chain_volume(const Mesh& m, const Chamber& c) {
+  double v = 0;
+  for (std::size_t i = 0; i < c.facets.size(); ++i) {
+    const auto& f = c.facets[i];
+    REQUIRE(f.size() == 2);
+    if (i > 0) REQUIRE(c.facets[i - 1][1] == f[0]);
+    const double ra = m.X(f[0], 0), za = m.X(f[0], 1), rb = m.X(f[1], 0), zb = m.X(f[1], 1);
+    v += pi * (zb - za) * (ra * ra + ra * rb + rb * rb) / 3;
+  }
+  REQUIRE(m.X(c.facets.front()[0], 0) == 0.0);
+  REQUIRE(m.X(c.facets.back()[1], 0) == 0.0);
+  return v;
+}
+
+/// Number of connected pieces of the mesh (elements linked through shared nodes).
+int connected_pieces(const Mesh& m) {
+  std::vector<int> parent(static_cast<std::size_t>(m.num_nodes()));
+  std::iota(parent.begin(), parent.end(), 0);
+  std::function<int(int)> root = [&](int n) { return parent[n] == n ? n : parent[n] = root(parent[n]); };
+  for (int e = 0; e < m.num_elements(); ++e)
+    for (int a = 1; a < 4; ++a) parent[root(m.element(e)[a])] = root(m.element(e)[0]);
+  std::set<int> roots;
+  for (int e = 0; e < m.num_elements(); ++e) roots.insert(root(m.element(e)[0]));
+  return static_cast<int>(roots.size());
+}
+
+std::set<int> part_nodes(const Mesh& m, int part) {
+  std::set<int> nodes;
+  for (int e = 0; e < m.num_elements(); ++e)
+    if (m.part[e] == part) nodes.insert(m.element(e), m.element(e) + 4);
+  return nodes;
+}
+
+nlohmann::json thesis_geometry_json() {
+  return nlohmann::json::parse(R"({
+    "length_mm": 160, "bottom_radius_mm": 9, "top_radius_mm": 12,
+    "wall_thickness_normalised": 0.466, "end_cap_thickness_normalised": 0.25,
+    "ring_count_normalised": 0.375, "ring_reference_diameter_mm": 2,
+    "ring_thickness_normalised": 0.4, "fixed_end": "top" })");
+}
+
+RraDesign read_geometry(const nlohmann::json& j) {
+  JsonReader reader(j, "geometry");
+  return read_rra_design(reader);
+}
+
+/// The InputError message for `j`, or "" when it reads fine.
+std::string input_error(const nlohmann::json& j) {
+  try {
+    read_geometry(j);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// The whitespace-separated values of the DataArray named `name` in a .vtu text.
+std::vector<double> data_array(const std::string& text, const std::string& name) {
+  const auto tag = text.find("Name=\"" + name + "\"");
+  REQUIRE(tag != std::string::npos);
+  const auto begin = text.find('>', tag) + 1, end = text.find("</DataArray>", begin);
+  std::istringstream values(text.substr(begin, end - begin));
+  std::vector<double> out;
+  for (double x; values >> x;) out.push_back(x);
+  return out;
+}
+
+long count_of(const std::string& text, const std::string& what) {
+  long n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("RRA design: the thesis' normalised values give 30 rings of 2.1333 mm", "[rra_mesh]") {
+  const RraDesign d = read_geometry(thesis_geometry_json());
+  CHECK(d.ring_count == 30);
+  CHECK(d.ring_diameter_mm == Approx(2.1333).epsilon(1e-4));
+  CHECK(d.wall_thickness_mm == Approx(0.466 * 9));
+  CHECK(d.end_cap_thickness_mm == Approx(2.25));
+  CHECK(d.fixed_end == RraDesign::FixedEnd::top);
+  CHECK(d.pitch() == Approx(160.0 / 30));
+  CHECK(d.ring_centre_z(1) == Approx(80.0 / 30));
+
+  const auto j = to_json(d);
+  CHECK(j["normalised"]["wall_thickness_normalised"].get<double>() == Approx(0.466));
+  CHECK(j["normalised"]["ring_count_normalised"].get<double>() == Approx(0.375));
+  CHECK(j["normalised"]["ring_thickness_normalised"].get<double>() == Approx(0.4));
+  const RraDesign again = read_geometry(j["physical"]);  // "physical" is itself a valid input
+  CHECK(again.ring_count == 30);
+  CHECK(again.ring_diameter_mm == Approx(d.ring_diameter_mm));
+  CHECK(again.wall_thickness_mm == Approx(d.wall_thickness_mm));
+}
+
+TEST_CASE("RRA design: bad input names the field", "[rra_mesh]") {
+  auto with = [](const std::string& key, const nlohmann::json& value) {
+    auto j = thesis_geometry_json();
+    j[key] = value;
+    return j;
+  };
+  auto without = [](nlohmann::json j, const std::string& key) {
+    j.erase(key);
+    return j;
+  };
+  CHECK_THAT(input_error(with("length_mm", -160)), Catch::Contains("geometry.length_mm"));
+  CHECK_THAT(input_error(with("wall_thickness_normalised", 1.0)),
+             Catch::Contains("geometry.wall_thickness_normalised") && Catch::Contains("no chamber"));
+  CHECK_THAT(input_error(with("top_radius_mm", 3)), Catch::Contains("geometry.wall_thickness_normalised"));
+  CHECK_THAT(input_error(with("end_cap_thickness_normalised", 9)), Catch::Contains("geometry.end_cap_thickness_normalised"));
+  CHECK_THAT(input_error(with("ring_thickness_normalised", 1.0)),
+             Catch::Contains("geometry.ring_thickness_normalised") && Catch::Contains("pitch"));
+  auto deep_groove = without(with("ring_diameter_mm", 9.0), "ring_thickness_normalised");  // 30 rings: pitch 5.33
+  CHECK_THAT(input_error(deep_groove), Catch::Contains("geometry.ring_diameter_mm"));
+  deep_groove = without(with("ring_count", 10), "ring_count_normalised");  // pitch 16 mm: d_r = 6.4 fits axially
+  deep_groove["ring_thickness_normalised"] = 0.55;                          // d_r/2 = 4.4 mm > t_w = 4.19 mm
+  CHECK_THAT(input_error(deep_groove), Catch::Contains("geometry.ring_thickness_normalised") && Catch::Contains("groove"));
+  CHECK_THAT(input_error(with("wall_thickness_mm", 4)), Catch::Contains("geometry.wall_thickness_mm") &&
+                                                            Catch::Contains("exactly one"));
+  CHECK_THAT(input_error(without(thesis_geometry_json(), "end_cap_thickness_normalised")),
+             Catch::Contains("geometry.end_cap_thickness_mm"));
+  CHECK_THAT(input_error(with("lenght_mm", 160)), Catch::Contains("geometry.lenght_mm") && Catch::Contains("unknown key"));
+  CHECK_THAT(input_error(with("fixed_end", "left")), Catch::Contains("geometry.fixed_end"));
+  CHECK(input_error(with("ring_count_normalised", 0.0)) == "");  // a plain tube: the ring size is ignored
+
+  RraDesign d = thesis_rra();
+  d.wall_thickness_mm = 9.5;
+  CHECK_THROWS_WITH(validate(d), Catch::Contains("geometry.wall_thickness_mm"));
+  d = thesis_rra();
+  d.bottom_radius_mm = 14;  // reverse taper: valid
+  CHECK_NOTHROW(validate(d));
+}
+
+TEST_CASE("RRA mesh: every element has a positive Jacobian at its Gauss points", "[rra_mesh]") {
+  for (const auto& [name, design] : test_designs())
+    for (int level = 1; level <= 3; ++level) {
+      INFO(name << ", level " << level);
+      const Mesh m = mesh_rra(design, level);
+      CHECK(m.dim == 2);
+      CHECK(m.nodes_per_element == 4);
+      CHECK(m.part.size() == static_cast<std::size_t>(m.num_elements()));
+      CHECK(min_jacobian(m) > 0);
+    }
+  const Mesh level1 = mesh_rra(thesis_rra(), 1);
+  CHECK(level1.num_elements() > 300);
+  CHECK(level1.num_elements() < 1500);
+}
+
+TEST_CASE("RRA mesh: tube and ring volumes converge at second order", "[rra_mesh]") {
+  for (const auto& d : {test_designs()[0].second, test_designs()[2].second}) {
+    const double tube = exact_tube_volume(d);
+    std::vector<double> tube_error, ring_error;
+    for (int level = 1; level <= 3; ++level) {
+      const Mesh m = mesh_rra(d, level);
+      tube_error.push_back(std::abs(part_volume(m, 0) - tube) / tube);
+      ring_error.push_back(worst_ring_volume_error(m, d));
+    }
+    for (std::size_t i = 1; i < tube_error.size(); ++i) {
+      CHECK(std::log2(tube_error[i - 1] / tube_error[i]) == Approx(2).margin(0.1));
+      CHECK(std::log2(ring_error[i - 1] / ring_error[i]) == Approx(2).margin(0.1));
+    }
+    CHECK(tube_error.back() < 5e-3);
+  }
+  // Without rings the geometry is polygonal, so the mesh is exact.
+  const auto plain = test_designs()[1].second;
+  CHECK(part_volume(mesh_rra(plain, 1), 0) == Approx(exact_tube_volume(plain)).epsilon(1e-12));
+}
+
+TEST_CASE("RRA mesh: the chamber chain encloses the frustum exactly", "[rra_mesh]") {
+  for (const auto& [name, d] : test_designs())
+    for (int level : {1, 2}) {
+      INFO(name << ", level " << level);
+      const Mesh m = mesh_rra(d, level);
+      REQUIRE(m.chambers.size() == 1);
+      CHECK(m.chambers[0].id == 1);
+      CHECK(m.chambers[0].name == "chamber");
+      const double t_c = d.end_cap_thickness_mm;
+      const double exact = frustum(d.length_mm - 2 * t_c, d.chamber_radius(t_c), d.chamber_radius(d.length_mm - t_c));
+      CHECK(chain_volume(m, m.chambers[0]) == Approx(exact).epsilon(1e-12));
+    }
+}
+
+TEST_CASE("RRA mesh: rings are bonded to the tube through the groove nodes", "[rra_mesh]") {
+  const RraDesign d = thesis_rra();
+  for (int level : {1, 2}) {
+    const Mesh m = mesh_rra(d, level);
+    const auto sizes = rra_mesh_sizes(d, level);
+    CHECK(connected_pieces(m) == 1);
+    REQUIRE(m.part_names == std::vector<std::string>{"tube", "rings"});
+    const auto tube = part_nodes(m, 0), rings = part_nodes(m, 1);
+    std::vector<int> shared;
+    std::set_intersection(tube.begin(), tube.end(), rings.begin(), rings.end(), std::back_inserter(shared));
+    CHECK(shared.size() == static_cast<std::size_t>(d.ring_count * (sizes.groove_segments + 1)));
+    const double rho = d.ring_section_radius();
+    for (int n : shared) {  // every shared node lies on a groove
+      const double z = m.X(n, 1);
+      const int k = static_cast<int>(z / d.pitch()) + 1;
+      const double R = d.outer_radius(d.ring_centre_z(k));
+      CHECK(std::hypot(m.X(n, 0) - R, z - d.ring_centre_z(k)) == Approx(rho).epsilon(1e-12));
+      CHECK(m.X(n, 0) <= R + 1e-12);
+    }
+  }
+  const Mesh plain = mesh_rra(test_designs()[1].second, 1);
+  CHECK(part_nodes(plain, 1).empty());
+}
+
+TEST_CASE("RRA mesh: node sets", "[rra_mesh]") {
+  RraDesign d = thesis_rra();
+  for (auto fixed : {RraDesign::FixedEnd::top, RraDesign::FixedEnd::bottom}) {
+    d.fixed_end = fixed;
+    const Mesh m = mesh_rra(d, 2);
+    const auto sizes = rra_mesh_sizes(d, 2);
+    const auto& sets = m.node_sets;
+    auto count_where = [&](const std::function<bool(int)>& test) {
+      int n = 0;
+      for (int i = 0; i < m.num_nodes(); ++i) n += test(i);
+      return n;
+    };
+    const double l = d.length_mm;
+    CHECK(sets.at("bottom").size() == static_cast<std::size_t>(sizes.core_layers_bottom + sizes.wall_layers + 1));
+    CHECK(sets.at("top").size() == static_cast<std::size_t>(sizes.core_layers_top + sizes.wall_layers + 1));
+    CHECK(sets.at("bottom").size() == static_cast<std::size_t>(count_where([&](int n) { return m.X(n, 1) == 0.0; })));
+    CHECK(sets.at("top").size() == static_cast<std::size_t>(count_where([&](int n) { return m.X(n, 1) == l; })));
+    CHECK(sets.at("axis").size() == static_cast<std::size_t>(count_where([&](int n) { return m.X(n, 0) == 0.0; })));
+    for (int n : sets.at("axis")) CHECK(m.X(n, 0) == 0.0);
+    for (int n : sets.at("bottom")) CHECK(m.X(n, 1) == 0.0);
+    for (int n : sets.at("top")) CHECK(m.X(n, 1) == l);
+    const bool top_fixed = fixed == RraDesign::FixedEnd::top;
+    CHECK(sets.at("fixed_end") == sets.at(top_fixed ? "top" : "bottom"));
+    REQUIRE(sets.at("free_end_centre").size() == 1);
+    const int centre = sets.at("free_end_centre")[0];
+    CHECK(m.X(centre, 0) == 0.0);
+    CHECK(m.X(centre, 1) == (top_fixed ? 0.0 : l));
+  }
+}
+
+TEST_CASE("RRA mesh: element counts grow fourfold per level", "[rra_mesh]") {
+  const RraDesign d = thesis_rra();
+  const Mesh l1 = mesh_rra(d, 1), l2 = mesh_rra(d, 2);
+  CHECK(l2.num_elements() == 4 * l1.num_elements());
+  CHECK_THROWS_AS(mesh_rra(d, 0), std::invalid_argument);
+}
+
+TEST_CASE("rectangle_mesh: counts, node sets, chamber and distortion", "[rra_mesh]") {
+  const Mesh m = rectangle_mesh(2, 5, -1, 3, 3, 4, 0.8);
+  CHECK(m.num_nodes() == 4 * 5);
+  CHECK(m.num_elements() == 12);
+  CHECK(m.part_names == std::vector<std::string>{"solid"});
+  CHECK(min_jacobian(m) > 0);
+  CHECK(m.node_sets.at("inner").size() == 5);
+  CHECK(m.node_sets.at("outer").size() == 5);
+  CHECK(m.node_sets.at("bottom").size() == 4);
+  CHECK(m.node_sets.at("top").size() == 4);
+  CHECK(m.node_sets.at("boundary").size() == 14);
+  CHECK(m.node_sets.count("axis") == 0);
+  CHECK(volume(m, [](int) { return true; }) == Approx(pi * (25 - 4) * 4));  // boundary nodes do not move
+  REQUIRE(m.chambers.size() == 1);
+  double v = 0;
+  for (const auto& f : m.chambers[0].facets) {
+    CHECK(m.X(f[1], 1) > m.X(f[0], 1));
+    v += pi * (m.X(f[1], 1) - m.X(f[0], 1)) * 3 * 4 / 3;
+  }
+  CHECK(v == Approx(pi * 4 * 4));
+
+  const Mesh solid = rectangle_mesh(0, 1, 0, 1, 2, 2);
+  CHECK(solid.node_sets.at("axis") == solid.node_sets.at("inner"));
+  CHECK(solid.chambers.empty());
+  CHECK_THROWS_AS(rectangle_mesh(1, 1, 0, 1, 2, 2), std::invalid_argument);
+}
+
+TEST_CASE("write_vtu: well-formed ParaView file with the right counts", "[rra_mesh]") {
+  namespace fs = std::filesystem;
+  const fs::path folder = fs::temp_directory_path() / ("softarm_vtu_test_" + std::to_string(::getpid()));
+  fs::remove_all(folder);
+  const Mesh m = mesh_rra(thesis_rra(), 1);
+  Eigen::MatrixXd x = m.X;
+  x.col(1) *= 1.01;  // a stretched configuration
+  NamedField pressure{"pressure", 1, std::vector<double>(static_cast<std::size_t>(m.num_nodes()), 0.2)};
+  NamedField stress{"stress", 4, std::vector<double>(static_cast<std::size_t>(m.num_elements()) * 4, 1.5)};
+  const fs::path file = folder / "rra.vtu";
+  write_vtu(file.string(), m, x, {pressure}, {stress});
+
+  const std::string text = read_text(file);
+  CHECK(text.rfind("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\"", 0) == 0);
+  CHECK(text.find("</VTKFile>") == text.size() - std::string("</VTKFile>\n").size());
+  CHECK(count_of(text, "<DataArray") == count_of(text, "</DataArray>"));
+  CHECK(count_of(text, "<DataArray") == 8);
+  CHECK_THAT(text, Catch::Contains("NumberOfPoints=\"" + std::to_string(m.num_nodes()) + "\" NumberOfCells=\"" +
+                                   std::to_string(m.num_elements()) + "\""));
+  const auto connectivity = data_array(text, "connectivity");
+  CHECK(connectivity.size() == m.connectivity.size());
+  CHECK(connectivity[5] == m.connectivity[5]);
+  const auto offsets = data_array(text, "offsets"), types = data_array(text, "types");
+  CHECK(offsets.size() == static_cast<std::size_t>(m.num_elements()));
+  CHECK(offsets.back() == 4.0 * m.num_elements());
+  CHECK(std::count(types.begin(), types.end(), 9.0) == m.num_elements());
+  const auto parts = data_array(text, "part");
+  CHECK(std::count(parts.begin(), parts.end(), 1.0) == std::count(m.part.begin(), m.part.end(), 1));
+  const auto u = data_array(text, "displacement");
+  REQUIRE(u.size() == 3 * static_cast<std::size_t>(m.num_nodes()));
+  const int top = m.node_sets.at("top")[0];
+  CHECK(u[3 * top + 1] == 0.0);                   // y = 0: the axisymmetric plane is x–z
+  CHECK(u[3 * top + 2] == Approx(0.01 * 160.0));  // z displacement
+  CHECK(data_array(text, "stress").size() == 4 * static_cast<std::size_t>(m.num_elements()));
+  for (const auto& entry : fs::directory_iterator(folder)) CHECK(entry.path().filename() == "rra.vtu");  // no temp file left
+
+  NamedField wrong{"pressure", 1, {1.0, 2.0}};
+  CHECK_THROWS_AS(write_vtu(file.string(), m, x, {wrong}, {}), std::invalid_argument);
+  NamedField reserved{"part", 1, std::vector<double>(static_cast<std::size_t>(m.num_elements()), 0.0)};
+  CHECK_THROWS_AS(write_vtu(file.string(), m, x, {}, {reserved}), std::invalid_argument);
+
+  Mesh cube;  // one hexahedron: dim 3 is written as VTK_HEXAHEDRON
+  cube.dim = 3;
+  cube.nodes_per_element = 8;
+  cube.X.resize(8, 3);
+  cube.X << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1;
+  cube.connectivity = {0, 1, 2, 3, 4, 5, 6, 7};
+  cube.part = {0};
+  cube.part_names = {"block"};
+  write_vtu((folder / "cube.vtu").string(), cube, cube.X, {}, {});
+  CHECK(data_array(read_text(folder / "cube.vtu"), "types") == std::vector<double>{12.0});
+  fs::remove_all(folder);
+}
