@@ -91,49 +91,59 @@ void AxisymmetricElasticForm::declare_pattern(SparsePattern& pattern) {
 FormStatus AxisymmetricElasticForm::element(int e, const Vector& x, bool want_gradient, bool want_hessian,
                                             ElementEnergy& out) const {
   const HyperelasticLaw& law = *materials_[mesh_.part[e]].law;
-  const bool mean_dilatation = law.has_volumetric_split() && treatment_ == VolumetricTreatment::mean_dilatation;
-  const bool pointwise_volume = law.has_volumetric_split() && !mean_dilatation;
+  const bool split = law.has_volumetric_split();
+  const bool mean_dilatation = split && treatment_ == VolumetricTreatment::mean_dilatation;
   const auto xe = nodal(mesh_, mesh_.element(e), x);
+  const auto& points = reference_[e];
 
-  double v = 0.0;                                    // current volume ∫ J dV
-  ElementVector dv = ElementVector::Zero();           // ∂v/∂x_e
-  ElementMatrix d2v = ElementMatrix::Zero();          // ∂²v/∂x_e²
-  for (const ReferencePoint& p : reference_[e]) {
-    const Mat3 F = deformation_gradient(p, xe);
-    const auto s = evaluate_principal(law, F, want_hessian);
-    if (!s) return FormStatus::inverted(e, "inverted element (det F <= 0 at a Gauss point)");
-    const GradientOperator B = gradient_operator(p);
-    out.W += s->W * p.dV;
-    if (want_gradient) out.g.noalias() += p.dV * B.transpose() * active(s->P);
-    if (want_hessian) out.K.noalias() += p.dV * B.transpose().lazyProduct(active(s->A).lazyProduct(B));
-    if (mean_dilatation || pointwise_volume) {
-      const double J = F.determinant();
-      const Mat3 Finv = F.inverse();
-      const Vec5 dJ = active(Mat3(J * Finv.transpose()));  // ∂J/∂F = J F⁻ᵀ
-      if (mean_dilatation) {
-        v += J * p.dV;
-        if (want_gradient || want_hessian) dv.noalias() += p.dV * B.transpose() * dJ;
-        if (want_hessian) d2v.noalias() += p.dV * B.transpose().lazyProduct(jacobian_hessian(J, Finv).lazyProduct(B));
-      } else {
-        const VolumetricResponse U = law.volumetric(J);
-        out.W += U.U * p.dV;
-        const ElementVector BdJ = B.transpose() * dJ;
-        if (want_gradient) out.g.noalias() += p.dV * U.dU * BdJ;
-        if (want_hessian)
-          out.K.noalias() += p.dV * (U.d2U * BdJ * BdJ.transpose() +
-                                     U.dU * B.transpose().lazyProduct(jacobian_hessian(J, Finv).lazyProduct(B)));
-      }
-    }
+  std::array<Mat3, kGaussPoints> F;
+  std::array<double, kGaussPoints> J;
+  double v = 0.0;  // current volume ∫ J dV
+  for (int q = 0; q < kGaussPoints; ++q) {
+    F[q] = deformation_gradient(points[q], xe);
+    J[q] = F[q].determinant();
+    if (!(J[q] > 0.0)) return FormStatus::inverted(e, "inverted element (det F <= 0 at a Gauss point)");
+    v += J[q] * points[q].dV;
   }
+  // Mean dilatation: one volumetric response per element, at J̄ = v / V.
+  const double V = reference_volume_[e];
+  VolumetricResponse Ubar;
   if (mean_dilatation) {
-    const double V = reference_volume_[e];
-    const double Jbar = v / V;
-    if (!(Jbar > 0.0)) return FormStatus::inverted(e, "inverted element (mean dilatation <= 0)");
-    const VolumetricResponse U = law.volumetric(Jbar);
-    out.W += V * U.U;
-    if (want_gradient) out.g.noalias() += U.dU * dv;
-    if (want_hessian) out.K.noalias() += (U.d2U / V) * dv * dv.transpose() + U.dU * d2v;
+    Ubar = law.volumetric(v / V);
+    out.W += V * Ubar.U;
   }
+
+  ElementVector dv = ElementVector::Zero();  // ∂v/∂x_e (mean dilatation)
+  for (int q = 0; q < kGaussPoints; ++q) {
+    const ReferencePoint& p = points[q];
+    const auto s = evaluate_principal(law, F[q], want_hessian);
+    if (!s) return FormStatus::inverted(e, "inverted element (det F <= 0 at a Gauss point)");
+    out.W += s->W * p.dV;
+    if (!want_gradient && !want_hessian && !split) continue;
+    const GradientOperator B = gradient_operator(p);
+    Vec5 stress = active(s->P);  // ∂W/∂F, plus the volumetric part below
+    Mat5 tangent;
+    if (want_hessian) tangent = active(s->A);
+    if (split) {
+      const Mat3 Finv = F[q].inverse();
+      const Vec5 dJ = active(Mat3(J[q] * Finv.transpose()));  // ∂J/∂F = J F⁻ᵀ
+      // Mean dilatation: the gradient is U'(J̄) ∂v/∂x with ∂v/∂x = Σ dV Bᵀ ∂J/∂F, and the Hessian
+      // U''(J̄)/V ∂v ∂vᵀ + U'(J̄) ∂²v, whose Gauss-point part U'(J̄) ∂²J/∂F² joins the tangent here.
+      // Pointwise: U(J) at this point.
+      const VolumetricResponse U = mean_dilatation ? Ubar : law.volumetric(J[q]);
+      if (mean_dilatation) {
+        dv.noalias() += p.dV * B.transpose() * dJ;
+      } else {
+        out.W += U.U * p.dV;
+        if (want_hessian) tangent.noalias() += U.d2U * dJ * dJ.transpose();
+      }
+      stress += U.dU * dJ;
+      if (want_hessian) tangent += U.dU * jacobian_hessian(J[q], Finv);
+    }
+    if (want_gradient) out.g.noalias() += p.dV * B.transpose() * stress;
+    if (want_hessian) out.K.noalias() += B.transpose().lazyProduct((p.dV * tangent).lazyProduct(B));
+  }
+  if (mean_dilatation && want_hessian) out.K.noalias() += (Ubar.d2U / V) * dv * dv.transpose();
   if (!std::isfinite(out.W)) return FormStatus::inverted(e, "non-finite strain energy");
   return FormStatus::fine();
 }
@@ -202,18 +212,6 @@ std::vector<ElementResult> AxisymmetricElasticForm::element_results(const Vector
     }
   }
   return results;
-}
-
-std::vector<double> AxisymmetricElasticForm::part_volumes_mm3() const {
-  std::vector<double> volumes(mesh_.part_names.size(), 0.0);
-  for (int e = 0; e < mesh_.num_elements(); ++e) volumes[mesh_.part[e]] += reference_volume_[e];
-  return volumes;
-}
-
-std::vector<double> AxisymmetricElasticForm::part_masses_kg() const {
-  auto masses = part_volumes_mm3();
-  for (std::size_t i = 0; i < masses.size(); ++i) masses[i] *= materials_[i].density_g_cm3 * 1e-6;  // mm³·g/cm³ → kg
-  return masses;
 }
 
 }  // namespace softarm::fem

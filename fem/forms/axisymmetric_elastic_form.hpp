@@ -45,10 +45,6 @@ class AxisymmetricElasticForm : public Form {
   FormStatus add(const Vector& x, double* value, Vector* gradient, HessianAccumulator* hessian) const override;
 
   std::vector<ElementResult> element_results(const Vector& x) const;
-  /// Reference volume of each part, mm³ (full revolution).
-  std::vector<double> part_volumes_mm3() const;
-  /// Mass of each part, kg.
-  std::vector<double> part_masses_kg() const;
   const std::vector<Material>& materials() const { return materials_; }
 
  private:

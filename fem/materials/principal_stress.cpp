@@ -67,7 +67,7 @@ std::optional<PrincipalStress> evaluate_principal(const HyperelasticLaw& law, co
   Mat93 M;
   for (int a = 0; a < 3; ++a)
     for (int i = 0; i < 3; ++i) M.block<3, 1>(3 * i, a) = G(i, a) * Q.col(a);
-  out.A.noalias() = M * (4.0 * fh) * M.transpose();
+  out.A.noalias() = M.lazyProduct((4.0 * fh).lazyProduct(M.transpose()));  // small: avoid the blocked GEMM path
 
   for (int a = 0; a < 3; ++a) {
     for (int b = a + 1; b < 3; ++b) {

@@ -63,10 +63,14 @@ void validate_design(const RraDesign& d, const FieldNames& f) {
     throw InputError(f.ring_size, "ring diameter " + with_normalised(d_r, d_r / pitch) +
                                       " does not fit: it must be less than the ring pitch l/n_r = " + show(pitch) +
                                       " mm (normalised < 1; at 1 neighbouring rings touch)");
-  if (d.ring_section_radius() >= d.wall_thickness_mm)
+  // The groove is centred on the tapered surface; the chamber wall runs parallel
+  // to it at the perpendicular distance t_w·cos θ (tan θ = taper slope).
+  const double slope = (d.top_radius_mm - d.bottom_radius_mm) / d.length_mm;
+  const double wall_normal = d.wall_thickness_mm / std::sqrt(1 + slope * slope);
+  if (d.ring_section_radius() >= wall_normal)
     throw InputError(f.ring_size, "ring diameter " + with_normalised(d_r, d_r / pitch) + ": its groove depth d_r/2 = " +
                                       show(d.ring_section_radius()) + " mm must be less than the wall thickness " +
-                                      show(d.wall_thickness_mm) + " mm, or the groove cuts into the chamber");
+                                      show(wall_normal) + " mm (normal to the taper), or the groove cuts into the chamber");
 }
 
 /// Reads one parameter given either physically (mm) or normalised (× scale);
@@ -158,6 +162,32 @@ nlohmann::json to_json(const RraDesign& d) {
       {"chamber_radius_at_top_cap_mm", d.chamber_radius(l - t_c)},
   };
   return {{"physical", physical}, {"normalised", normalised}, {"derived", derived}};
+}
+
+namespace {
+constexpr double kPi = 3.141592653589793;
+double frustum(double height, double r1, double r2) { return kPi * height * (r1 * r1 + r1 * r2 + r2 * r2) / 3; }
+}  // namespace
+
+double tube_volume_mm3(const RraDesign& d) {
+  const double rho = d.ring_section_radius();
+  double v = 0, z = 0, r = d.bottom_radius_mm;
+  for (int k = 1; k <= d.ring_count; ++k) {
+    const double z_k = d.ring_centre_z(k), R = d.outer_radius(z_k);
+    v += frustum(z_k - rho - z, r, R) + kPi * R * R * 2 * rho - 2 * kPi * (R - 4 * rho / (3 * kPi)) * (kPi * rho * rho / 2);
+    z = z_k + rho;
+    r = R;
+  }
+  v += frustum(d.length_mm - z, r, d.top_radius_mm);
+  const double t_c = d.end_cap_thickness_mm;
+  return v - frustum(d.length_mm - 2 * t_c, d.chamber_radius(t_c), d.chamber_radius(d.length_mm - t_c));
+}
+
+double ring_volume_mm3(const RraDesign& d) {
+  const double rho = d.ring_section_radius();
+  double v = 0.0;
+  for (int k = 1; k <= d.ring_count; ++k) v += 2 * kPi * kPi * d.outer_radius(d.ring_centre_z(k)) * rho * rho;
+  return v;
 }
 
 }  // namespace softarm::fem

@@ -55,9 +55,19 @@ RraDesign read_rra_design(JsonReader& geometry);
 /// Throws InputError naming the offending field (as "geometry.<physical key>")
 /// when the design cannot be built: non-positive sizes, a wall that leaves no
 /// chamber, caps that leave no chamber, rings that touch or overlap (d_r ≥ l/n_r)
-/// or grooves as deep as the wall (d_r/2 ≥ t_w). Any positive taper, including
+/// or grooves as deep as the wall (d_r/2 ≥ t_w·cos θ, measured normal to a taper of
+/// angle θ). Any positive taper, including
 /// a reverse one (r_t < r_b), is valid.
 void validate(const RraDesign& design);
+
+/// Exact volume of the silicone tube (caps included, grooves and chamber
+/// removed), mm³: frusta between grooves through both lips of ring k at R_k,
+/// a cylinder of radius R_k over each groove, minus the half-disc grooves
+/// (Pappus: area πρ²/2 times 2π times the centroid radius R_k − 4ρ/3π), minus
+/// the chamber frustum. The mass reports use this, not the mesh.
+double tube_volume_mm3(const RraDesign& design);
+/// Exact volume of all rings, Σ 2π² R_k ρ² (tori), mm³.
+double ring_volume_mm3(const RraDesign& design);
 
 /// {"physical": {...}, "normalised": {...}, "derived": {...}}. "physical" alone is
 /// a valid "geometry" input (it round-trips through read_rra_design).

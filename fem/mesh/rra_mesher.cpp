@@ -56,15 +56,28 @@ class OuterProfile {
 };
 
 /// The semicircular groove of ring k and the ring's circle: node q of the circle,
-/// divided into 2·segments, is at angle φ = qπ/segments with
-/// (r, z) = (R_k − ρ sin φ, z_k − ρ cos φ): q = 0 is the lower lip, q = segments
-/// the upper lip, 0 < q < segments the groove, q > segments the ring's free side.
+/// divided into 2·segments, is at angle φ_q with (r, z) = (R_k − ρ sin φ, z_k − ρ cos φ):
+/// q = 0 is the lower lip, q = segments the upper lip, 0 < q < segments the
+/// groove, q > segments the ring's free side. φ_q = qπ/segments, except that a
+/// cap face ending in the groove may pin node `pinned` to the angle `pinned_phi`,
+/// the groove's two parts on either side keeping uniform spacing.
 struct Groove {
   Point centre;  // (R_k, z_k)
   double rho = 0;
   int segments = 0;
+  int pinned = -1;
+  double pinned_phi = 0;
+  int cap_lines = 0;  // cap-face transversals ending in this groove
+
   static Point direction(double phi) { return {-std::sin(phi), -std::cos(phi)}; }
-  Point arc_point(int q) const { return centre + rho * direction(q * pi / segments); }
+  double uniform_phi(double q) const { return q * pi / segments; }
+  double phi(int q) const {
+    if (pinned < 0 || q > segments) return uniform_phi(q);
+    if (q <= pinned) return pinned_phi * q / pinned;
+    return pinned_phi + (pi - pinned_phi) * (q - pinned) / (segments - pinned);
+  }
+  Point point_at(double phi) const { return centre + rho * direction(phi); }
+  Point arc_point(int q) const { return point_at(phi(q)); }
   double lip_z(int side) const { return centre.y() + (side == 0 ? -rho : rho); }
 };
 
@@ -121,29 +134,50 @@ class RraMesher {
 
  private:
   Point chamber_point(double z) const { return {d_.chamber_radius(z), z}; }
+  /// z of the foot of the perpendicular from p to the chamber line r = r_c(z).
+  double normal_foot_z(const Point& p) const {
+    const double slope = (d_.top_radius_mm - d_.bottom_radius_mm) / d_.length_mm;
+    return (p.y() + slope * (p.x() - d_.chamber_radius(0))) / (1 + slope * slope);
+  }
   int refined(double length) const {
     const double h1 = sizes_.element_size_mm * sizes_.refinement;
     return std::max(1, static_cast<int>(std::lround(length / h1))) * sizes_.refinement;
   }
 
+  /// The outer-surface point across the gap from lip `side` of groove k: the
+  /// facing lip of the neighbouring groove, or the tube's end.
+  Point across_gap(int k, int side) const {
+    const int n = static_cast<int>(grooves_.size());
+    if (side == 0) return k == 0 ? Point(d_.bottom_radius_mm, 0) : lip_point(k - 1, 1);
+    return k == n - 1 ? Point(d_.top_radius_mm, d_.length_mm) : lip_point(k + 1, 0);
+  }
+  Point lip_point(int k, int side) const {
+    const Groove& g = grooves_[static_cast<std::size_t>(k)];
+    return {g.centre.x(), g.lip_z(side)};
+  }
+
   /// The line from a lip (side 0: lower, 1: upper), bending `reach` into the
   /// neighbouring gap, away from the groove, and ending `inner_distance` from
   /// the lip on the chamber line (= reach, unless a cap face is moved onto it).
+  /// It leaves the lip along the bisector of the tube's corner there, between
+  /// the groove (which leaves the lip radially) and the outer surface: 45° on a
+  /// straight tube, tilted by the taper of the lip-to-lip profile.
   Transversal lip_transversal(int k, int side, double reach, double inner_distance) const {
-    const Groove& g = grooves_[static_cast<std::size_t>(k)];
     const double away = side == 0 ? -1.0 : 1.0;
     Transversal t;
-    t.outer = Point(g.centre.x(), g.lip_z(side));
+    t.outer = lip_point(k, side);
     t.inner = chamber_point(t.outer.y() + away * inner_distance);
+    const Point bisector = (across_gap(k, side) - t.outer).normalized() + Point(-1, 0);
+    const double departure_slope = std::abs(bisector.y() / bisector.x());  // |dz/dr| of the bisector
     t.reach = away * reach;
-    t.bend_extent = std::min(1.0, 2 * reach / (t.outer.x() - t.inner.x()));
+    t.bend_extent = std::min(1.0, 2 * reach / ((t.outer.x() - t.inner.x()) * departure_slope));
     t.groove = k;
-    t.arc_index = side == 0 ? 0 : g.segments;
+    t.arc_index = side == 0 ? 0 : grooves_[static_cast<std::size_t>(k)].segments;
     return t;
   }
 
   /// The block boundaries across the wall, ordered along z.
-  std::vector<Transversal> key_transversals() const {
+  std::vector<Transversal> key_transversals() {
     const int n = static_cast<int>(grooves_.size());
     // Bend reach of each lip (index 2k + side): a fraction of the wall width,
     // and at most a quarter of the gap it bends into, so the two lines bending
@@ -152,12 +186,10 @@ class RraMesher {
     std::vector<double> reach(static_cast<std::size_t>(2 * n));
     for (int k = 0; k < n; ++k)
       for (int side = 0; side < 2; ++side) {
-        const Groove& g = grooves_[static_cast<std::size_t>(k)];
-        const double z = g.lip_z(side);
-        const double neighbour = side == 0 ? (k == 0 ? 0.0 : grooves_[static_cast<std::size_t>(k - 1)].lip_z(1))
-                                           : (k == n - 1 ? d_.length_mm : grooves_[static_cast<std::size_t>(k + 1)].lip_z(0));
-        const double wall = g.centre.x() - d_.chamber_radius(z);
-        reach[static_cast<std::size_t>(2 * k + side)] = std::min(lip_bend_fraction * wall, std::abs(neighbour - z) / 4);
+        const Point lip = lip_point(k, side);
+        const double wall = lip.x() - d_.chamber_radius(lip.y());
+        const double gap = std::abs(across_gap(k, side).y() - lip.y());
+        reach[static_cast<std::size_t>(2 * k + side)] = std::min(lip_bend_fraction * wall, gap / 4);
       }
 
     std::vector<Transversal> keys;
@@ -189,23 +221,50 @@ class RraMesher {
     return keys;
   }
 
-  /// The transversal ending on the cap's inner face z = z_cap. Inside a groove it
-  /// runs to the level-1 groove node nearest in z, so that every level has the
-  /// same blocks and halves the previous level's elements exactly. Within twice
-  /// a lip's bend reach of that lip, on its gap side, the lip's own line ends on
-  /// the cap face instead (a separate line there would cross it, or leave a
-  /// sliver between the two); it still leaves the lip at 45°. Returns nothing
-  /// when merged into a lip.
+  /// The transversal ending on the cap's inner face z = z_cap.
+  /// Inside a groove it runs straight from the chamber line to the level-1
+  /// groove node nearest in z, so that every level has the same blocks and
+  /// halves the previous level's elements exactly -- unless that line would be
+  /// slanted by more than half the wall it crosses (the thin wall under a deep
+  /// groove, which it would shear into inverted elements): then this level's
+  /// nearest groove node is pinned where the chamber line's normal through
+  /// z_cap meets the groove, and the line runs along that normal.
+  /// Within twice a lip's bend reach of that lip, on its gap side, the lip's
+  /// own line ends on the cap face instead (a separate line there would cross
+  /// it, or leave a sliver between the two); it still leaves the lip along its
+  /// corner's bisector. Returns nothing when merged into a lip.
   std::optional<Transversal> cap_face_transversal(double z_cap, const std::vector<double>& reach,
                                                   std::vector<double>& inner_distance,
-                                                  std::vector<int>& lip_cap_face, int face) const {
+                                                  std::vector<int>& lip_cap_face, int face) {
     for (std::size_t k = 0; k < grooves_.size(); ++k) {
-      const Groove& g = grooves_[k];
+      Groove& g = grooves_[k];
       if (!(g.lip_z(0) < z_cap && z_cap < g.lip_z(1))) continue;
+      auto miss = [&](double phi) { return normal_foot_z(g.point_at(phi)) - z_cap; };
+      auto z_of = [&](int q) { return g.point_at(g.uniform_phi(q)).y(); };
       const int f = sizes_.refinement;
       int best = f;
       for (int q = 2 * f; q < g.segments; q += f)
-        if (std::abs(g.arc_point(q).y() - z_cap) < std::abs(g.arc_point(best).y() - z_cap)) best = q;
+        if (std::abs(z_of(q) - z_cap) < std::abs(z_of(best) - z_cap)) best = q;
+      const Point node = g.arc_point(best);
+      const double wall_crossed = (node - chamber_point(normal_foot_z(node))).norm();
+      if (std::abs(miss(g.uniform_phi(best))) > 0.5 * wall_crossed) {
+        if (g.cap_lines > 0)  // pinning would move the node the other cap's line ends on
+          throw InputError("geometry", "cannot lay out a mesh: both cap faces end in the groove at z = " +
+                                           std::to_string(g.centre.y()) + " mm (the chamber is too short)");
+        for (int q = 0; q < g.segments; ++q) {  // bracket the root between two nodes of this level
+          double lo = g.uniform_phi(q), hi = g.uniform_phi(q + 1);
+          if (miss(lo) * miss(hi) > 0) continue;
+          for (int it = 0; it < 60; ++it) {  // bisection
+            const double mid = 0.5 * (lo + hi);
+            ((miss(mid) <= 0) == (miss(lo) <= 0) ? lo : hi) = mid;
+          }
+          g.pinned_phi = 0.5 * (lo + hi);
+          g.pinned = std::clamp(static_cast<int>(std::lround(g.pinned_phi / g.uniform_phi(1))), 1, g.segments - 1);
+          best = g.pinned;
+          break;
+        }
+      }
+      ++g.cap_lines;
       Transversal t{chamber_point(z_cap), g.arc_point(best)};
       t.groove = static_cast<int>(k);
       t.arc_index = best;
@@ -226,9 +285,10 @@ class RraMesher {
     return Transversal{chamber_point(z_cap), Point(profile_.radius(z_cap), z_cap)};
   }
 
-  /// The wall strip: blocks between consecutive key transversals, each filled by
-  /// transfinite interpolation of its four sides (bottom: the chamber line, top:
-  /// the outer surface or a groove arc, sides: the two key transversals).
+  /// The wall strip: blocks between consecutive key transversals, each filled
+  /// by (length-scaled) transfinite interpolation of its four sides (bottom: the
+  /// chamber line, top: the outer surface or a groove arc, sides: the two key
+  /// transversals).
   void build_wall(const std::vector<Transversal>& keys) {
     arc_nodes_.assign(grooves_.size(), std::vector<int>(static_cast<std::size_t>(sizes_.groove_segments) + 1, -1));
     add_column(keys.front(), [&](double eta) { return keys.front().at(eta); });
@@ -238,9 +298,10 @@ class RraMesher {
       const bool on_arc = A.groove >= 0 && A.groove == B.groove && A.arc_index < B.arc_index;
       const int n = on_arc ? B.arc_index - A.arc_index
                            : refined(0.5 * ((B.outer - A.outer).norm() + (B.inner - A.inner).norm()));
+      const std::vector<double> bottom_z = block_bottom(A, B, n, on_arc);
       for (int j = 1; j < n; ++j) {
         const double xi = static_cast<double>(j) / n;
-        const Point bottom = chamber_point(A.inner.y() + xi * (B.inner.y() - A.inner.y()));
+        const Point bottom = chamber_point(bottom_z[static_cast<std::size_t>(j)]);
         const Point top = on_arc ? grooves_[static_cast<std::size_t>(A.groove)].arc_point(A.arc_index + j)
                                  : Point(A.outer + xi * (B.outer - A.outer));
         Transversal column{bottom, top};
@@ -248,8 +309,14 @@ class RraMesher {
           column.groove = A.groove;
           column.arc_index = A.arc_index + j;
         }
+        // The sides' bends are blended in scaled by this column's length, so a
+        // column through the thin wall under a deep groove is bent (sheared) no
+        // more, relatively, than the sides are.
+        const double length = (top - bottom).norm();
+        const double from_A = (1 - xi) * length / (A.outer - A.inner).norm();
+        const double from_B = xi * length / (B.outer - B.inner).norm();
         add_column(column, [&](double eta) -> Point {
-          return (1 - eta) * bottom + eta * top + (1 - xi) * A.bend(eta) + xi * B.bend(eta);
+          return (1 - eta) * bottom + eta * top + from_A * A.bend(eta) + from_B * B.bend(eta);
         });
       }
       add_column(B, [&](double eta) { return B.at(eta); });
@@ -257,6 +324,28 @@ class RraMesher {
     if (bottom_cap_column_ < 0 || top_cap_column_ < 0) throw std::logic_error("mesh_rra: cap face not on a column");
     for (const auto& nodes : arc_nodes_)
       if (std::count(nodes.begin(), nodes.end(), -1) > 0) throw std::logic_error("mesh_rra: groove node missing");
+  }
+
+  /// z of a block's nodes on the chamber line: uniform, except under a groove,
+  /// where the columns turn towards the chamber line's normal as the groove
+  /// deepens (weight sin²φ: 0 at the lips, 1 at the groove bottom), so that the
+  /// thin wall under a deep groove is crossed straight rather than sheared.
+  std::vector<double> block_bottom(const Transversal& A, const Transversal& B, int n, bool on_arc) const {
+    const double z0 = A.inner.y(), z1 = B.inner.y();
+    std::vector<double> uniform(static_cast<std::size_t>(n) + 1), z;
+    for (int j = 0; j <= n; ++j) uniform[static_cast<std::size_t>(j)] = z0 + (z1 - z0) * j / n;
+    if (!on_arc) return uniform;
+    const Groove& g = grooves_[static_cast<std::size_t>(A.groove)];
+    z = uniform;
+    for (int j = 1; j < n; ++j) {
+      const int q = A.arc_index + j;
+      const double foot = std::clamp(normal_foot_z(g.arc_point(q)), z0, z1);
+      const double w = std::pow(std::sin(g.phi(q)), 2);
+      z[static_cast<std::size_t>(j)] = (1 - w) * uniform[static_cast<std::size_t>(j)] + w * foot;
+    }
+    for (int j = 0; j < n; ++j)  // keep at least a fifth of the uniform spacing, else stay uniform
+      if (!(z[static_cast<std::size_t>(j) + 1] - z[static_cast<std::size_t>(j)] > 0.2 * (z1 - z0) / n)) return uniform;
+    return z;
   }
 
   /// Adds one column of wall nodes at η = i / wall_layers (exact ends) and the

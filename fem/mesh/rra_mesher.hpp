@@ -15,11 +15,18 @@
 // transversals at the tube ends, the cap faces z = t_c and l − t_c, and the lips
 // of every groove; nodes inside a block are placed by transfinite interpolation.
 // At a lip the tube has a convex 90° corner (the groove leaves the surface
-// radially), so the lip transversal leaves it at 45° and bends back to radial;
-// a straight radial one would make sliver elements that get worse with
-// refinement. The caps' solid core (r ≤ r_c) is a structured block on the strip's
-// inner line; each ring is an O-grid (a square core and an annulus) whose inner
-// half shares the groove nodes.
+// radially), so the lip transversal leaves it along the corner's bisector (45°
+// on a straight tube) and bends back to radial; a straight radial one would
+// make sliver elements that get worse with refinement. Under a groove the
+// columns turn towards the chamber wall's normal, so a deep groove's thin
+// remaining wall is crossed, not sheared. The caps' solid core (r ≤ r_c) is a
+// structured block on the strip's inner line; each ring is an O-grid (a square
+// core and an annulus) whose inner half shares the groove nodes.
+//
+// Checked (tests/test_rra_mesh.cpp, and a random search over 20,000 valid
+// designs with tapers up to 6°, levels 1–3): every element has a positive
+// Jacobian at its Gauss points. Tapers steeper than about 17° combined with
+// nearly touching rings can still fold an element.
 #include "fem/mesh/mesh.hpp"
 #include "fem/mesh/rra_design.hpp"
 

@@ -69,9 +69,10 @@ RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress) {
   problem.add_form(chamber);
   problem.finalize();
   out.dofs = problem.num_dofs();
-  const auto masses = elastic->part_masses_kg();
-  out.tube_mass_kg = masses[mesh.part_index("tube")];
-  if (const int rings = mesh.part_index("rings"); rings >= 0) out.ring_mass_kg = masses[rings];
+  // Mass from the exact geometry (the mesh's polygonal rings lose up to 10 % at level 1).
+  constexpr double kKgPerMm3PerGcm3 = 1e-6;
+  out.tube_mass_kg = tube_volume_mm3(spec.design) * spec.tube_material.density_g_cm3 * kKgPerMm3PerGcm3;
+  out.ring_mass_kg = ring_volume_mm3(spec.design) * spec.ring_material.density_g_cm3 * kKgPerMm3PerGcm3;
   out.timings.setup_s = since(t_setup);
 
   const int free_node = mesh.node_sets.at("free_end_centre").front();
