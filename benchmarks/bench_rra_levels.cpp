@@ -3,10 +3,11 @@
 // For each level: DOFs, load steps, Newton iterations, time in assembly /
 // factorisation / solve and in total (median of --repeat runs), peak memory,
 // and the extension at the final pressure with its change from the next finer
-// level. With --treatments both, the same table for the locking-prone
-// pointwise volumetric integration, to justify the mean-dilatation element.
+// level. With --variants all, the same table for the Q1/P0 (mean dilatation)
+// element and for Q1 with pointwise volumetric integration (which locks), to
+// justify the element choice.
 //
-// Usage: bench_rra_levels [config] [--max-level L] [--repeat N] [--threads T] [--treatments both]
+// Usage: bench_rra_levels [config] [--max-level L] [--repeat N] [--threads T] [--variants all]
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -58,22 +59,32 @@ Row run_level(fem::RraSceneSpec spec, int level, int repeat) {
 int main(int argc, char** argv) {
   std::string config = "configs/rra_thesis.json";
   int max_level = 5, repeat = 5, threads = 1;
-  bool both = false;
+  bool all_variants = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--max-level") && i + 1 < argc) max_level = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--treatments") && i + 1 < argc) both = std::string(argv[++i]) == "both";
+    else if (!std::strcmp(argv[i], "--variants") && i + 1 < argc) all_variants = std::string(argv[++i]) == "all";
     else config = argv[i];
   }
   fem::set_thread_count(threads);
   const auto scene = engine::load_scene_config(config);
   std::printf("thesis RRA benchmark: %s, %d thread(s), median of %d runs per level\n", config.c_str(), threads, repeat);
-  for (auto treatment : {fem::VolumetricTreatment::mean_dilatation, fem::VolumetricTreatment::pointwise}) {
-    if (treatment == fem::VolumetricTreatment::pointwise && !both) break;
+  struct Variant {
+    const char* name;
+    int order;
+    fem::VolumetricTreatment treatment;
+  };
+  const std::vector<Variant> variants = {
+      {"Q2/P1, projected dilatation (default)", 2, fem::VolumetricTreatment::projected_dilatation},
+      {"Q1/P0, mean dilatation", 1, fem::VolumetricTreatment::projected_dilatation},
+      {"Q1, pointwise volumetric integration (locks)", 1, fem::VolumetricTreatment::pointwise}};
+  for (const auto& variant : variants) {
+    if (&variant != &variants.front() && !all_variants) break;
     auto spec = scene.rra;
-    spec.treatment = treatment;
-    std::printf("\nvolumetric treatment: %s\n", treatment == fem::VolumetricTreatment::pointwise ? "pointwise (locks)" : "mean dilatation");
+    spec.element_order = variant.order;
+    spec.treatment = variant.treatment;
+    std::printf("\nelement: %s\n", variant.name);
     std::printf("level elements   dofs steps newton  assembly_s factor_s solve_s  total_s  peak_MiB  ext_mm@%.1fkPa  outcome\n",
                 spec.path.max_pressure_kPa);
     std::vector<Row> rows;

@@ -64,7 +64,7 @@ nlohmann::json write_rra_summary(const SceneConfig& config, const fem::RraResult
   for (const auto& p : r.curve) curve.push_back(point_json(p));
   nlohmann::json summary = {
       {"scene", "rra"},
-      {"model", "axisymmetric Q1 mean-dilatation FEM (a lone RRA under internal pressure is axisymmetric)"},
+      {"model", "axisymmetric FEM (a lone RRA under internal pressure is axisymmetric), " + r.element_name},
       {"design", fem::to_json(config.rra.design)},
       {"materials", {{"tube", config.rra.tube_material.name}, {"rings", config.rra.ring_material.name}}},
       {"mesh", {{"level", config.rra.mesh_level}, {"elements", r.mesh.num_elements()}, {"nodes", r.mesh.num_nodes()},
@@ -92,7 +92,7 @@ nlohmann::json write_rra_summary(const SceneConfig& config, const fem::RraResult
         << " kPa: " << r.curve.back().extension_mm << " mm\n";
   out << std::setprecision(4) << "mass: " << 1e3 * (r.tube_mass_kg + r.ring_mass_kg) << " g (tube "
       << 1e3 * r.tube_mass_kg << " g, rings " << 1e3 * r.ring_mass_kg << " g)\n"
-      << "model: axisymmetric, " << r.mesh.num_elements() << " elements, " << r.dofs << " dofs; "
+      << "model: axisymmetric " << r.element_name << ", " << r.mesh.num_elements() << " elements, " << r.dofs << " dofs; "
       << r.path.path.stats.steps << " load steps, " << r.path.path.stats.newton_iterations << " Newton iterations, "
       << std::setprecision(3) << r.timings.total_s << " s\n"
       << "written: " << dir << "/curve.csv, " << dir << "/summary.json" << (config.output.vtu ? ", " + dir + "/deformed.vtu" : "")

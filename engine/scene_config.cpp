@@ -71,10 +71,13 @@ fem::RraSceneSpec read_rra(JsonReader& root) {
   materials.finish();
 
   auto mesh = root.object("mesh", "discretisation");
-  spec.mesh_level = mesh.integer("level", 2, Range::closed(1, 6), "refinement level (each level halves the element size)");
-  const auto treatment = mesh.choice("volumetric_treatment", "mean_dilatation", {"mean_dilatation", "pointwise"},
-                                     "mean_dilatation avoids locking; pointwise is kept for comparison only");
-  spec.treatment = treatment == "pointwise" ? fem::VolumetricTreatment::pointwise : fem::VolumetricTreatment::mean_dilatation;
+  spec.mesh_level = mesh.integer("level", spec.mesh_level, Range::closed(1, 6),
+                                 "refinement level (each level halves the element size)");
+  spec.element_order = mesh.integer("element_order", spec.element_order, Range::closed(1, 2),
+                                    "1: bilinear Q1/P0 (mean dilatation); 2: biquadratic Q2/P1 (converges next to rigid rings)");
+  const auto treatment = mesh.choice("volumetric_treatment", "projected_dilatation", {"projected_dilatation", "pointwise"},
+                                     "projected_dilatation avoids locking; pointwise is kept for comparison only");
+  spec.treatment = treatment == "pointwise" ? fem::VolumetricTreatment::pointwise : fem::VolumetricTreatment::projected_dilatation;
   mesh.finish();
 
   spec.path = read_load(root.object("load", "loading"), root.object("solver", "nonlinear solver controls"));

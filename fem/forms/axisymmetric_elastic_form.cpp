@@ -1,11 +1,13 @@
 #include "fem/forms/axisymmetric_elastic_form.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <cmath>
 #include <stdexcept>
 
 #include "fem/core/parallel.hpp"
+#include "fem/elements/axisymmetric_quad.hpp"
 #include "fem/materials/principal_stress.hpp"
 
 namespace softarm::fem {
@@ -43,175 +45,238 @@ Mat5 jacobian_hessian(double J, const Mat3& Finv) {
   return H;
 }
 
-Eigen::Matrix<double, kNodes, 2> nodal(const Mesh& mesh, const int* nodes, const Vector& x) {
-  Eigen::Matrix<double, kNodes, 2> xe;
-  for (int a = 0; a < kNodes; ++a) xe.row(a) << x[2 * nodes[a]], x[2 * nodes[a] + 1];
-  return xe;
-}
-}  // namespace
+template <class E>
+class AxisymmetricElasticForm final : public ElasticForm {
+  static constexpr int kDofs = 2 * E::kNodes, kModes = E::kDilatationModes;
+  using ElementVector = Eigen::Matrix<double, kDofs, 1>;
+  using ElementMatrix = Eigen::Matrix<double, kDofs, kDofs>;
+  using ModeVector = Eigen::Matrix<double, kModes, 1>;
+  using ModeMatrix = Eigen::Matrix<double, kModes, kModes>;
+  using Points = std::array<ReferencePoint<E>, E::kGaussPoints>;
 
-struct AxisymmetricElasticForm::ElementEnergy {
-  double W = 0.0;
-  ElementVector g = ElementVector::Zero();
-  ElementMatrix K = ElementMatrix::Zero();
+  struct ElementEnergy {
+    double W = 0.0;
+    ElementVector g = ElementVector::Zero();
+    ElementMatrix K = ElementMatrix::Zero();
+  };
+
+ public:
+  AxisymmetricElasticForm(const Mesh& mesh, std::vector<Material> materials, VolumetricTreatment treatment)
+      : mesh_(mesh), materials_(std::move(materials)), treatment_(treatment) {
+    if (materials_.size() < mesh.part_names.size())
+      throw std::logic_error("axisymmetric elastic form: a material is missing for a mesh part");
+    const int ne = mesh.num_elements();
+    reference_.resize(ne);
+    projection_inverse_.resize(ne);
+    for (int e = 0; e < ne; ++e) {
+      const NodalCoordinates<E> Xe = nodal(mesh.X, e);
+      if (!reference_points<E>(Xe, reference_[e]))
+        throw std::logic_error("mesh element " + std::to_string(e) + " is inverted or degenerate");
+      // L² projection onto the dilatation space: M θ = ∫ φ J dV, M = ∫ φ φᵀ dV.
+      ModeMatrix M = ModeMatrix::Zero();
+      for (const auto& p : reference_[e]) M += p.dV * p.phi * p.phi.transpose();
+      projection_inverse_[e] = M.inverse();
+    }
+  }
+
+  std::string element_name() const override { return E::name; }
+
+  void declare_pattern(SparsePattern& pattern) override {
+    blocks_.resize(mesh_.num_elements());
+    for (int e = 0; e < mesh_.num_elements(); ++e) {
+      std::array<int, kDofs> dofs;
+      for (int a = 0; a < E::kNodes; ++a) {
+        dofs[2 * a] = 2 * mesh_.element(e)[a];
+        dofs[2 * a + 1] = 2 * mesh_.element(e)[a] + 1;
+      }
+      blocks_[e] = pattern.declare_block(dofs);
+    }
+  }
+
+  FormStatus add(const Vector& x, double* value, Vector* gradient, HessianAccumulator* hessian) const override {
+    const int threads = thread_count();
+    std::vector<double> values(threads, 0.0);
+    std::vector<Vector> gradients(gradient ? threads : 0, Vector::Zero(x.size()));
+    std::vector<FormStatus> status(threads);
+    parallel_for(mesh_.num_elements(), [&](int begin, int end, int t) {
+      for (int e = begin; e < end; ++e) {
+        ElementEnergy E_;
+        status[t] = element(e, x, gradient != nullptr, hessian != nullptr, E_);
+        if (!status[t].ok) return;
+        values[t] += E_.W;
+        const int* nodes = mesh_.element(e);
+        if (gradient)
+          for (int a = 0; a < E::kNodes; ++a) gradients[t].template segment<2>(2 * nodes[a]) += E_.g.template segment<2>(2 * a);
+        if (hessian) hessian->add_block(t, blocks_[e], E_.K.data());
+      }
+    });
+    for (const auto& s : status)
+      if (!s.ok) return s;
+    for (int t = 0; t < threads; ++t) {
+      if (value) *value += values[t];
+      if (gradient) *gradient += gradients[t];
+    }
+    return FormStatus::fine();
+  }
+
+  std::vector<ElementResult> element_results(const Vector& x) const override {
+    std::vector<ElementResult> results(mesh_.num_elements());
+    for (int e = 0; e < mesh_.num_elements(); ++e) {
+      const HyperelasticLaw& law = *materials_[mesh_.part[e]].law;
+      const auto xe = nodal(x, e);
+      const bool projected = law.has_volumetric_split() && treatment_ == VolumetricTreatment::projected_dilatation;
+      std::array<Mat3, E::kGaussPoints> F;
+      std::array<double, E::kGaussPoints> J, theta;
+      for (int q = 0; q < E::kGaussPoints; ++q) {
+        F[q] = deformation_gradient<E>(reference_[e][q], xe);
+        J[q] = F[q].determinant();
+      }
+      dilatations(e, J, theta);
+      ElementResult& r = results[e];
+      r.max_principal_cauchy_MPa = -1e300;
+      r.max_principal_stretch = 0.0;
+      r.min_principal_stretch = 1e300;
+      double volume = 0.0, theta_sum = 0.0;
+      for (int q = 0; q < E::kGaussPoints; ++q) {
+        const double Jv = projected ? theta[q] : J[q];
+        theta_sum += Jv * reference_[e][q].dV;
+        volume += reference_[e][q].dV;
+        const auto s = evaluate_principal(law, F[q], false);
+        if (!s || !(J[q] > 0.0) || !(Jv > 0.0)) continue;
+        // Stretches of F̄ = (θ/J)^(1/3) F: the kinematics the energy actually sees.
+        const Mat3 Fbar = std::cbrt(Jv / J[q]) * F[q];
+        Eigen::SelfAdjointEigenSolver<Mat3> eig(Fbar.transpose() * Fbar, Eigen::EigenvaluesOnly);
+        const double lmax = std::sqrt(eig.eigenvalues()[2]);
+        r.max_principal_stretch = std::max(r.max_principal_stretch, lmax);
+        r.min_principal_stretch = std::min(r.min_principal_stretch, std::sqrt(eig.eigenvalues()[0]));
+        r.max_principal_log_strain = std::max(r.max_principal_log_strain, std::log(lmax));
+        // Kirchhoff stress of the principal part over the volume ratio, plus the pressure U'(θ).
+        Mat3 sigma = s->P * F[q].transpose() / Jv;
+        if (law.has_volumetric_split()) sigma += law.volumetric(Jv).dU * Mat3::Identity();
+        Eigen::SelfAdjointEigenSolver<Mat3> es(sigma, Eigen::EigenvaluesOnly);
+        r.max_principal_cauchy_MPa = std::max(r.max_principal_cauchy_MPa, es.eigenvalues()[2]);
+      }
+      r.dilatation = theta_sum / volume;
+    }
+    return results;
+  }
+
+ private:
+  template <class Positions>
+  NodalCoordinates<E> nodal(const Positions& x, int e) const {
+    NodalCoordinates<E> xe;
+    const int* nodes = mesh_.element(e);
+    for (int a = 0; a < E::kNodes; ++a) {
+      if constexpr (std::is_same_v<Positions, Vector>)
+        xe.row(a) << x[2 * nodes[a]], x[2 * nodes[a] + 1];
+      else
+        xe.row(a) = x.row(nodes[a]);
+    }
+    return xe;
+  }
+
+  // θ at the Gauss points: the L² projection of J onto the dilatation space.
+  void dilatations(int e, const std::array<double, E::kGaussPoints>& J, std::array<double, E::kGaussPoints>& theta) const {
+    ModeVector rhs = ModeVector::Zero();
+    for (int q = 0; q < E::kGaussPoints; ++q) rhs += reference_[e][q].dV * J[q] * reference_[e][q].phi;
+    const ModeVector coeffs = projection_inverse_[e] * rhs;
+    for (int q = 0; q < E::kGaussPoints; ++q) theta[q] = reference_[e][q].phi.dot(coeffs);
+  }
+
+  // Energy, gradient and Hessian of one element.
+  //   Volumetric part Π_v = Σ_q U(θ_q) dV_q with θ = φᵀ M⁻¹ G_J, G_J = Σ_q φ_q J_q dV_q.
+  //   Gradient: Σ_q dV_q Bᵀ ∂J/∂F · s_q, with the "pressure" s_q = φ_qᵀ M⁻¹ Σ_p U'(θ_p) φ_p dV_p.
+  //   Hessian: Σ_q dV_q Bᵀ s_q ∂²J/∂F² B + Gᵀ M⁻¹ D M⁻¹ G, D = Σ_q U''(θ_q) φ_q φ_qᵀ dV_q,
+  //   G = Σ_q φ_q dV_q (Bᵀ ∂J/∂F)ᵀ. For Q1 (φ = 1) this is the mean-dilatation element.
+  FormStatus element(int e, const Vector& x, bool want_gradient, bool want_hessian, ElementEnergy& out) const {
+    const HyperelasticLaw& law = *materials_[mesh_.part[e]].law;
+    const bool split = law.has_volumetric_split();
+    const bool projected = split && treatment_ == VolumetricTreatment::projected_dilatation;
+    const auto xe = nodal(x, e);
+    const Points& points = reference_[e];
+
+    std::array<Mat3, E::kGaussPoints> F;
+    std::array<double, E::kGaussPoints> J, theta;
+    for (int q = 0; q < E::kGaussPoints; ++q) {
+      F[q] = deformation_gradient<E>(points[q], xe);
+      J[q] = F[q].determinant();
+      if (!(J[q] > 0.0)) return FormStatus::inverted(e, "inverted element (det F <= 0 at a Gauss point)");
+    }
+    ModeVector pressure = ModeVector::Zero();  // M⁻¹ Σ U'(θ) φ dV
+    ModeMatrix D = ModeMatrix::Zero();
+    if (projected) {
+      dilatations(e, J, theta);
+      ModeVector u = ModeVector::Zero();
+      for (int q = 0; q < E::kGaussPoints; ++q) {
+        if (!(theta[q] > 0.0)) return FormStatus::inverted(e, "inverted element (projected dilatation <= 0)");
+        const VolumetricResponse U = law.volumetric(theta[q]);
+        out.W += U.U * points[q].dV;
+        u += U.dU * points[q].dV * points[q].phi;
+        D += U.d2U * points[q].dV * points[q].phi * points[q].phi.transpose();
+      }
+      pressure = projection_inverse_[e] * u;
+    }
+
+    Eigen::Matrix<double, kModes, kDofs> G = Eigen::Matrix<double, kModes, kDofs>::Zero();
+    for (int q = 0; q < E::kGaussPoints; ++q) {
+      const ReferencePoint<E>& p = points[q];
+      const auto s = evaluate_principal(law, F[q], want_hessian);
+      if (!s) return FormStatus::inverted(e, "inverted element (det F <= 0 at a Gauss point)");
+      out.W += s->W * p.dV;
+      if (!want_gradient && !want_hessian) {
+        if (split && !projected) out.W += law.volumetric(J[q]).U * p.dV;
+        continue;
+      }
+      const GradientOperator<E> B = gradient_operator<E>(p);
+      Vec5 stress = active(s->P);
+      Mat5 tangent;
+      if (want_hessian) tangent = active(s->A);
+      if (split) {
+        const Mat3 Finv = F[q].inverse();
+        const Vec5 dJ = active(Mat3(J[q] * Finv.transpose()));  // ∂J/∂F = J F⁻ᵀ
+        double dU;
+        if (projected) {
+          dU = p.phi.dot(pressure);
+          if (want_hessian) G.noalias() += p.phi * (p.dV * B.transpose() * dJ).transpose();
+        } else {  // pointwise U(J)
+          const VolumetricResponse U = law.volumetric(J[q]);
+          out.W += U.U * p.dV;
+          dU = U.dU;
+          if (want_hessian) tangent.noalias() += U.d2U * dJ * dJ.transpose();
+        }
+        stress += dU * dJ;
+        if (want_hessian) tangent += dU * jacobian_hessian(J[q], Finv);
+      }
+      if (want_gradient) out.g.noalias() += p.dV * B.transpose() * stress;
+      if (want_hessian) add_BtDB<E>(p, Mat5(p.dV * tangent), out.K);
+    }
+    if (projected && want_hessian) {
+      const auto PG = (projection_inverse_[e] * G).eval();
+      out.K.noalias() += PG.transpose() * D * PG;
+    }
+    if (!std::isfinite(out.W)) return FormStatus::inverted(e, "non-finite strain energy");
+    return FormStatus::fine();
+  }
+
+  const Mesh& mesh_;
+  std::vector<Material> materials_;
+  VolumetricTreatment treatment_;
+  std::vector<Points> reference_;
+  std::vector<ModeMatrix> projection_inverse_;
+  std::vector<int> blocks_;
 };
 
-AxisymmetricElasticForm::AxisymmetricElasticForm(const Mesh& mesh, std::vector<Material> part_materials,
-                                                 VolumetricTreatment treatment)
-    : mesh_(mesh), materials_(std::move(part_materials)), treatment_(treatment) {
-  if (mesh.dim != 2 || mesh.nodes_per_element != kNodes)
-    throw std::logic_error("AxisymmetricElasticForm needs an axisymmetric Q1 mesh");
-  if (materials_.size() < mesh.part_names.size())
-    throw std::logic_error("AxisymmetricElasticForm: a material is missing for a mesh part");
-  const int ne = mesh.num_elements();
-  reference_.resize(ne);
-  reference_volume_.resize(ne);
-  for (int e = 0; e < ne; ++e) {
-    Eigen::Matrix<double, kNodes, 2> Xe;
-    for (int a = 0; a < kNodes; ++a) Xe.row(a) = mesh.X.row(mesh.element(e)[a]);
-    if (!reference_points(Xe, reference_[e]))
-      throw std::logic_error("mesh element " + std::to_string(e) + " is inverted or degenerate");
-    reference_volume_[e] = 0.0;
-    for (const auto& p : reference_[e]) reference_volume_[e] += p.dV;
-  }
-}
+}  // namespace
 
-void AxisymmetricElasticForm::declare_pattern(SparsePattern& pattern) {
-  blocks_.resize(mesh_.num_elements());
-  for (int e = 0; e < mesh_.num_elements(); ++e) {
-    std::array<int, kDofs> dofs;
-    for (int a = 0; a < kNodes; ++a) {
-      dofs[2 * a] = 2 * mesh_.element(e)[a];
-      dofs[2 * a + 1] = 2 * mesh_.element(e)[a] + 1;
-    }
-    blocks_[e] = pattern.declare_block(dofs);
-  }
-}
-
-FormStatus AxisymmetricElasticForm::element(int e, const Vector& x, bool want_gradient, bool want_hessian,
-                                            ElementEnergy& out) const {
-  const HyperelasticLaw& law = *materials_[mesh_.part[e]].law;
-  const bool split = law.has_volumetric_split();
-  const bool mean_dilatation = split && treatment_ == VolumetricTreatment::mean_dilatation;
-  const auto xe = nodal(mesh_, mesh_.element(e), x);
-  const auto& points = reference_[e];
-
-  std::array<Mat3, kGaussPoints> F;
-  std::array<double, kGaussPoints> J;
-  double v = 0.0;  // current volume ∫ J dV
-  for (int q = 0; q < kGaussPoints; ++q) {
-    F[q] = deformation_gradient(points[q], xe);
-    J[q] = F[q].determinant();
-    if (!(J[q] > 0.0)) return FormStatus::inverted(e, "inverted element (det F <= 0 at a Gauss point)");
-    v += J[q] * points[q].dV;
-  }
-  // Mean dilatation: one volumetric response per element, at J̄ = v / V.
-  const double V = reference_volume_[e];
-  VolumetricResponse Ubar;
-  if (mean_dilatation) {
-    Ubar = law.volumetric(v / V);
-    out.W += V * Ubar.U;
-  }
-
-  ElementVector dv = ElementVector::Zero();  // ∂v/∂x_e (mean dilatation)
-  for (int q = 0; q < kGaussPoints; ++q) {
-    const ReferencePoint& p = points[q];
-    const auto s = evaluate_principal(law, F[q], want_hessian);
-    if (!s) return FormStatus::inverted(e, "inverted element (det F <= 0 at a Gauss point)");
-    out.W += s->W * p.dV;
-    if (!want_gradient && !want_hessian && !split) continue;
-    const GradientOperator B = gradient_operator(p);
-    Vec5 stress = active(s->P);  // ∂W/∂F, plus the volumetric part below
-    Mat5 tangent;
-    if (want_hessian) tangent = active(s->A);
-    if (split) {
-      const Mat3 Finv = F[q].inverse();
-      const Vec5 dJ = active(Mat3(J[q] * Finv.transpose()));  // ∂J/∂F = J F⁻ᵀ
-      // Mean dilatation: the gradient is U'(J̄) ∂v/∂x with ∂v/∂x = Σ dV Bᵀ ∂J/∂F, and the Hessian
-      // U''(J̄)/V ∂v ∂vᵀ + U'(J̄) ∂²v, whose Gauss-point part U'(J̄) ∂²J/∂F² joins the tangent here.
-      // Pointwise: U(J) at this point.
-      const VolumetricResponse U = mean_dilatation ? Ubar : law.volumetric(J[q]);
-      if (mean_dilatation) {
-        dv.noalias() += p.dV * B.transpose() * dJ;
-      } else {
-        out.W += U.U * p.dV;
-        if (want_hessian) tangent.noalias() += U.d2U * dJ * dJ.transpose();
-      }
-      stress += U.dU * dJ;
-      if (want_hessian) tangent += U.dU * jacobian_hessian(J[q], Finv);
-    }
-    if (want_gradient) out.g.noalias() += p.dV * B.transpose() * stress;
-    if (want_hessian) out.K.noalias() += B.transpose().lazyProduct((p.dV * tangent).lazyProduct(B));
-  }
-  if (mean_dilatation && want_hessian) out.K.noalias() += (Ubar.d2U / V) * dv * dv.transpose();
-  if (!std::isfinite(out.W)) return FormStatus::inverted(e, "non-finite strain energy");
-  return FormStatus::fine();
-}
-
-FormStatus AxisymmetricElasticForm::add(const Vector& x, double* value, Vector* gradient,
-                                        HessianAccumulator* hessian) const {
-  const int ne = mesh_.num_elements();
-  const int threads = thread_count();
-  std::vector<double> values(threads, 0.0);
-  std::vector<Vector> gradients(gradient ? threads : 0, Vector::Zero(x.size()));
-  std::vector<FormStatus> status(threads);
-  parallel_for(ne, [&](int begin, int end, int t) {
-    for (int e = begin; e < end; ++e) {
-      ElementEnergy E;
-      status[t] = element(e, x, gradient != nullptr, hessian != nullptr, E);
-      if (!status[t].ok) return;
-      values[t] += E.W;
-      const int* nodes = mesh_.element(e);
-      if (gradient)
-        for (int a = 0; a < kNodes; ++a) {
-          gradients[t][2 * nodes[a]] += E.g[2 * a];
-          gradients[t][2 * nodes[a] + 1] += E.g[2 * a + 1];
-        }
-      if (hessian) hessian->add_block(t, blocks_[e], E.K.data());
-    }
-  });
-  for (const auto& s : status)
-    if (!s.ok) return s;
-  for (int t = 0; t < threads; ++t) {
-    if (value) *value += values[t];
-    if (gradient) *gradient += gradients[t];
-  }
-  return FormStatus::fine();
-}
-
-std::vector<ElementResult> AxisymmetricElasticForm::element_results(const Vector& x) const {
-  std::vector<ElementResult> results(mesh_.num_elements());
-  for (int e = 0; e < mesh_.num_elements(); ++e) {
-    const HyperelasticLaw& law = *materials_[mesh_.part[e]].law;
-    const auto xe = nodal(mesh_, mesh_.element(e), x);
-    const bool split = law.has_volumetric_split();
-    double v = 0.0;
-    for (const auto& p : reference_[e]) v += deformation_gradient(p, xe).determinant() * p.dV;
-    const double Jbar = v / reference_volume_[e];
-    ElementResult& r = results[e];
-    r.dilatation = Jbar;
-    r.max_principal_cauchy_MPa = -1e300;
-    r.max_principal_stretch = 0.0;
-    r.min_principal_stretch = 1e300;
-    for (const auto& p : reference_[e]) {
-      const Mat3 F = deformation_gradient(p, xe);
-      const double J = F.determinant();
-      const auto s = evaluate_principal(law, F, false);
-      if (!s || !(J > 0.0) || !(Jbar > 0.0)) continue;
-      // Stretches of F̄ = (J̄/J)^(1/3) F: the kinematics the energy actually sees.
-      const Mat3 Fbar = split && treatment_ == VolumetricTreatment::mean_dilatation ? Mat3(std::cbrt(Jbar / J) * F) : F;
-      Eigen::SelfAdjointEigenSolver<Mat3> eig(Fbar.transpose() * Fbar, Eigen::EigenvaluesOnly);
-      const double lmax = std::sqrt(eig.eigenvalues()[2]);
-      r.max_principal_stretch = std::max(r.max_principal_stretch, lmax);
-      r.min_principal_stretch = std::min(r.min_principal_stretch, std::sqrt(eig.eigenvalues()[0]));
-      r.max_principal_log_strain = std::max(r.max_principal_log_strain, std::log(lmax));
-      Mat3 sigma = s->P * F.transpose() / J;
-      if (split) sigma += law.volumetric(treatment_ == VolumetricTreatment::mean_dilatation ? Jbar : J).dU * Mat3::Identity();
-      Eigen::SelfAdjointEigenSolver<Mat3> es(sigma, Eigen::EigenvaluesOnly);
-      r.max_principal_cauchy_MPa = std::max(r.max_principal_cauchy_MPa, es.eigenvalues()[2]);
-    }
-  }
-  return results;
+std::shared_ptr<ElasticForm> make_axisymmetric_elastic_form(const Mesh& mesh, std::vector<Material> part_materials,
+                                                            VolumetricTreatment treatment) {
+  if (mesh.dim != 2) throw std::logic_error("axisymmetric elastic form needs a 2D (r, z) mesh");
+  if (mesh.nodes_per_element == Quad4::kNodes)
+    return std::make_shared<AxisymmetricElasticForm<Quad4>>(mesh, std::move(part_materials), treatment);
+  if (mesh.nodes_per_element == Quad9::kNodes)
+    return std::make_shared<AxisymmetricElasticForm<Quad9>>(mesh, std::move(part_materials), treatment);
+  throw std::logic_error("axisymmetric elastic form: unsupported element with " +
+                         std::to_string(mesh.nodes_per_element) + " nodes");
 }
 
 }  // namespace softarm::fem

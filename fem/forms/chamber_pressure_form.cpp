@@ -7,29 +7,56 @@
 namespace softarm::fem {
 namespace {
 constexpr double kPi = 3.141592653589793;
+constexpr int kMaxNodes = 3;
 
+// Edge dofs (r_0, z_0, r_1, z_1, ...) in the facet's node order.
 struct EdgeDerivatives {
-  double V;
-  std::array<double, 4> g;       // ∂V/∂(r_a, z_a, r_b, z_b)
-  std::array<double, 16> h;      // column-major 4×4
+  int n = 0;                                     // nodes on the edge
+  double V = 0.0;
+  std::array<double, 2 * kMaxNodes> g{};         // ∂V/∂(r_a, z_a)
+  std::array<double, 4 * kMaxNodes * kMaxNodes> h{};  // column-major (2n)×(2n)
 };
 
-// Volume swept by edge (a → b) and its exact first and second derivatives.
-EdgeDerivatives edge_volume(double ra, double za, double rb, double zb) {
-  const double dz = zb - za;
-  const double q = ra * ra + ra * rb + rb * rb;
-  const double c = kPi / 3.0;
-  EdgeDerivatives d{};
-  d.V = c * dz * q;
-  d.g = {c * dz * (2 * ra + rb), -c * q, c * dz * (ra + 2 * rb), c * q};
-  auto H = [&](int i, int j, double v) { d.h[i + 4 * j] = v; d.h[j + 4 * i] = v; };
-  H(0, 0, 2 * c * dz);
-  H(0, 2, c * dz);
-  H(2, 2, 2 * c * dz);
-  H(0, 1, -c * (2 * ra + rb));
-  H(0, 3, c * (2 * ra + rb));
-  H(2, 1, -c * (ra + 2 * rb));
-  H(2, 3, c * (ra + 2 * rb));
+// Lagrange shape functions on s ∈ [−1, 1] with nodes in facet order: ends first, then the middle.
+void edge_shape(int n, double s, double* N, double* dN) {
+  if (n == 2) {
+    N[0] = 0.5 * (1 - s), N[1] = 0.5 * (1 + s);
+    dN[0] = -0.5, dN[1] = 0.5;
+  } else {  // facet (a, mid, b)
+    N[0] = 0.5 * s * (s - 1), N[1] = 1 - s * s, N[2] = 0.5 * s * (s + 1);
+    dN[0] = s - 0.5, dN[1] = -2 * s, dN[2] = s + 0.5;
+  }
+}
+
+// V_edge = ∫ π r² z' ds and its exact first and second derivatives.
+EdgeDerivatives edge_volume(const Vector& x, const std::vector<int>& nodes) {
+  EdgeDerivatives d;
+  d.n = static_cast<int>(nodes.size());
+  const int m = 2 * d.n;
+  // n-point Gauss–Legendre integrates the degree-(3n−4) integrand exactly.
+  static const double g2[2] = {-0.5773502691896257, 0.5773502691896257}, w2[2] = {1, 1};
+  static const double g3[3] = {-0.7745966692414834, 0.0, 0.7745966692414834}, w3[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+  const double* gs = d.n == 2 ? g2 : g3;
+  const double* ws = d.n == 2 ? w2 : w3;
+  for (int q = 0; q < d.n; ++q) {
+    double N[kMaxNodes], dN[kMaxNodes], r = 0, dz = 0;
+    edge_shape(d.n, gs[q], N, dN);
+    for (int a = 0; a < d.n; ++a) {
+      r += N[a] * x[2 * nodes[a]];
+      dz += dN[a] * x[2 * nodes[a] + 1];
+    }
+    const double w = ws[q] * kPi;
+    d.V += w * r * r * dz;
+    for (int a = 0; a < d.n; ++a) {
+      d.g[2 * a] += w * 2 * r * N[a] * dz;  // ∂/∂r_a
+      d.g[2 * a + 1] += w * r * r * dN[a];  // ∂/∂z_a
+      for (int b = 0; b < d.n; ++b) {
+        d.h[2 * a + m * (2 * b)] += w * 2 * N[a] * N[b] * dz;       // ∂²/∂r_a∂r_b
+        d.h[2 * a + m * (2 * b + 1)] += w * 2 * r * N[a] * dN[b];   // ∂²/∂r_a∂z_b
+        d.h[2 * b + 1 + m * (2 * a)] += w * 2 * r * N[a] * dN[b];   // ∂²/∂z_b∂r_a
+      }
+    }
+  }
   return d;
 }
 }  // namespace
@@ -39,6 +66,8 @@ ChamberPressureForm::ChamberPressureForm(const Mesh& mesh, int chamber, const Lo
   if (mesh.dim != 2) throw std::logic_error("ChamberPressureForm: only axisymmetric meshes so far");
   if (chamber < 0 || chamber >= static_cast<int>(mesh.chambers.size()))
     throw std::logic_error("ChamberPressureForm: no chamber " + std::to_string(chamber));
+  for (const auto& f : mesh.chambers[chamber].facets)
+    if (f.size() < 2 || f.size() > kMaxNodes) throw std::logic_error("ChamberPressureForm: edges need 2 or 3 nodes");
 }
 
 double ChamberPressureForm::pressure() const {
@@ -48,24 +77,23 @@ double ChamberPressureForm::pressure() const {
 void ChamberPressureForm::declare_pattern(SparsePattern& pattern) {
   blocks_.clear();
   for (const auto& f : mesh_.chambers[chamber_].facets) {
-    const std::array<int, 4> dofs{2 * f[0], 2 * f[0] + 1, 2 * f[1], 2 * f[1] + 1};
+    std::vector<int> dofs;
+    for (int n : f) dofs.insert(dofs.end(), {2 * n, 2 * n + 1});
     blocks_.push_back(pattern.declare_block(dofs));
   }
 }
 
 double ChamberPressureForm::volume(const Vector& x) const {
   double V = 0.0;
-  for (const auto& f : mesh_.chambers[chamber_].facets)
-    V += edge_volume(x[2 * f[0]], x[2 * f[0] + 1], x[2 * f[1]], x[2 * f[1] + 1]).V;
+  for (const auto& f : mesh_.chambers[chamber_].facets) V += edge_volume(x, f).V;
   return V;
 }
 
 Vector ChamberPressureForm::volume_gradient(const Vector& x) const {
   Vector g = Vector::Zero(x.size());
   for (const auto& f : mesh_.chambers[chamber_].facets) {
-    const auto d = edge_volume(x[2 * f[0]], x[2 * f[0] + 1], x[2 * f[1]], x[2 * f[1] + 1]);
-    const std::array<int, 4> dofs{2 * f[0], 2 * f[0] + 1, 2 * f[1], 2 * f[1] + 1};
-    for (int i = 0; i < 4; ++i) g[dofs[i]] += d.g[i];
+    const auto d = edge_volume(x, f);
+    for (int a = 0; a < d.n; ++a) g.segment<2>(2 * f[a]) += Eigen::Vector2d(d.g[2 * a], d.g[2 * a + 1]);
   }
   return g;
 }
@@ -76,14 +104,13 @@ FormStatus ChamberPressureForm::add(const Vector& x, double* value, Vector* grad
   const auto& facets = mesh_.chambers[chamber_].facets;
   for (std::size_t k = 0; k < facets.size(); ++k) {
     const auto& f = facets[k];
-    const std::array<int, 4> dofs{2 * f[0], 2 * f[0] + 1, 2 * f[1], 2 * f[1] + 1};
-    const auto d = edge_volume(x[dofs[0]], x[dofs[1]], x[dofs[2]], x[dofs[3]]);
+    const auto d = edge_volume(x, f);
     if (value) *value -= p * d.V;
     if (gradient)
-      for (int i = 0; i < 4; ++i) (*gradient)[dofs[i]] -= p * d.g[i];
+      for (int a = 0; a < d.n; ++a) gradient->segment<2>(2 * f[a]) -= p * Eigen::Vector2d(d.g[2 * a], d.g[2 * a + 1]);
     if (hessian && p != 0.0) {
-      std::array<double, 16> h;
-      for (int i = 0; i < 16; ++i) h[i] = -p * d.h[i];
+      std::array<double, 4 * kMaxNodes * kMaxNodes> h;
+      for (int i = 0; i < 4 * d.n * d.n; ++i) h[i] = -p * d.h[i];
       hessian->add_block(0, blocks_[k], h.data());
     }
   }

@@ -6,9 +6,13 @@
 // closed chamber. Dropping this stiffness is what makes solvers stall on
 // pressurised tubes (see shared/spec/calculix-notes.md).
 //
-// Axisymmetric volume of a chamber whose (r, z) boundary is the chain of edges
-// (a → b): V = Σ π (z_b − z_a)(r_a² + r_a r_b + r_b²)/3, exact for straight
-// edges (the volume of revolution of each trapezoid, Pappus–Guldin).
+// Axisymmetric volume of a chamber whose (r, z) boundary is a chain of
+// edges: V = ∮ π r² dz (divergence theorem for a body of revolution; the
+// closing segment on the axis contributes nothing). Along an edge with
+// Lagrange shape functions N_a(s), r = Σ N_a r_a and dz = Σ N_a' z_a ds, so
+// π r² z' is a polynomial of degree 3(n−1) − 1 in s, integrated exactly by
+// Gauss–Legendre with n points (2-node: exact trapezoid of revolution,
+// 3-node: exact for the quadratic edge).
 #include "fem/forms/form.hpp"
 #include "fem/mesh/mesh.hpp"
 

@@ -112,7 +112,8 @@ struct Transversal {
 
 class RraMesher {
  public:
-  RraMesher(const RraDesign& d, int level) : d_(d), sizes_(rra_mesh_sizes(d, level)), profile_(d) {
+  RraMesher(const RraDesign& d, int level, int wall_layers_at_level_1)
+      : d_(d), sizes_(rra_mesh_sizes(d, level, wall_layers_at_level_1)), profile_(d) {
     for (int k = 1; k <= d.ring_count; ++k) {
       const double z = d.ring_centre_z(k);
       grooves_.push_back({Point(d.outer_radius(z), z), d.ring_section_radius(), sizes_.groove_segments});
@@ -469,16 +470,17 @@ class RraMesher {
 
 }  // namespace
 
-RraMeshSizes rra_mesh_sizes(const RraDesign& d, int level) {
+RraMeshSizes rra_mesh_sizes(const RraDesign& d, int level, int wall_layers_at_level_1) {
+  if (wall_layers_at_level_1 < 1) throw std::invalid_argument("mesh_rra: at least one element through the wall");
   if (level < 1 || level > 10) throw std::invalid_argument("mesh_rra: level must be in [1, 10], got " + std::to_string(level));
   validate(d);
   RraMeshSizes s;
   const int f = 1 << (level - 1);
-  const double h1 = d.wall_thickness_mm / 3;
+  const double h1 = d.wall_thickness_mm / wall_layers_at_level_1;
   auto layers = [&](double length) { return std::max(1, static_cast<int>(std::lround(length / h1))) * f; };
   s.refinement = f;
   s.element_size_mm = h1 / f;
-  s.wall_layers = 3 * f;
+  s.wall_layers = wall_layers_at_level_1 * f;
   if (d.ring_count > 0) {
     const int quarter = std::max(2, static_cast<int>(std::ceil(pi * d.ring_section_radius() / (2 * h1) - 1e-9)));
     s.groove_segments = 2 * quarter * f;
@@ -490,6 +492,8 @@ RraMeshSizes rra_mesh_sizes(const RraDesign& d, int level) {
   return s;
 }
 
-Mesh mesh_rra(const RraDesign& design, int level) { return RraMesher(design, level).build(); }
+Mesh mesh_rra(const RraDesign& design, int level, int wall_layers_at_level_1) {
+  return RraMesher(design, level, wall_layers_at_level_1).build();
+}
 
 }  // namespace softarm::fem

@@ -33,7 +33,8 @@
 namespace softarm::fem {
 
 /// Element counts of mesh_rra at one level. Level 1 (f = 1):
-///   element size h1 = t_w / 3 (3 elements through the wall); each wall block
+///   element size h1 = t_w / w1 (w1 elements through the wall; 3 by default,
+///   2 for biquadratic elements, which then have as many nodes through the wall); each wall block
 ///   between key transversals gets round(length / h1) ≥ 1 elements along z;
 ///   each groove semicircle 2q segments with q = max(2, ceil(π ρ / (2 h1))), so a
 ///   ring has 4q around and a q × q core; the ring annulus
@@ -48,12 +49,12 @@ struct RraMeshSizes {
   int core_layers_bottom = 0;     // radial layers of the bottom cap's core
   int core_layers_top = 0;
 };
-RraMeshSizes rra_mesh_sizes(const RraDesign& design, int level);
+RraMeshSizes rra_mesh_sizes(const RraDesign& design, int level, int wall_layers_at_level_1 = 3);
 
 /// Meshes a validated design at refinement `level` in [1, 10] (std::invalid_argument
 /// otherwise). For the thesis RRA level 1 has about 900 elements; each level has
 /// about four times as many. Throws InputError("geometry", ...) for the rare
 /// designs whose blocks cannot be laid out (a chamber shorter than one groove segment).
-Mesh mesh_rra(const RraDesign& design, int level);
+Mesh mesh_rra(const RraDesign& design, int level, int wall_layers_at_level_1 = 3);
 
 }  // namespace softarm::fem

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "fem/assembly/energy_problem.hpp"
+#include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/rra_mesher.hpp"
 
 namespace softarm::fem {
@@ -25,7 +26,7 @@ DirichletConstraints rra_constraints(const Mesh& mesh) {
   return c;
 }
 
-RraCurvePoint curve_point(const PressureState& s, const Mesh& mesh, const AxisymmetricElasticForm& elastic,
+RraCurvePoint curve_point(const PressureState& s, const Mesh& mesh, const ElasticForm& elastic,
                           const Vector& x, int free_node, double extension_sign) {
   RraCurvePoint p;
   p.pressure_kPa = s.pressure_kPa;
@@ -53,14 +54,17 @@ RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress) {
   const auto t_start = Clock::now();
   RraResult out;
   validate(spec.design);
-  out.mesh = mesh_rra(spec.design, spec.mesh_level);
+  // Q2 elements get 2 layers through the wall at level 1 (5 nodes), Q1 3 (4 nodes).
+  out.mesh = spec.element_order == 2 ? to_quadratic(mesh_rra(spec.design, spec.mesh_level, 2))
+                                     : mesh_rra(spec.design, spec.mesh_level, 3);
   const Mesh& mesh = out.mesh;
   out.timings.mesh_s = since(t_start);
 
   const auto t_setup = Clock::now();
   std::vector<Material> materials(mesh.part_names.size(), spec.tube_material);
   if (const int rings = mesh.part_index("rings"); rings >= 0) materials[rings] = spec.ring_material;
-  auto elastic = std::make_shared<AxisymmetricElasticForm>(mesh, materials, spec.treatment);
+  auto elastic = make_axisymmetric_elastic_form(mesh, materials, spec.treatment);
+  out.element_name = elastic->element_name();
   LoadState load;
   load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
   auto chamber = std::make_shared<ChamberPressureForm>(mesh, spec.path.chamber, load);

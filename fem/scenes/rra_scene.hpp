@@ -19,8 +19,9 @@ namespace softarm::fem {
 struct RraSceneSpec {
   RraDesign design;
   Material tube_material, ring_material;
-  int mesh_level = 2;
-  VolumetricTreatment treatment = VolumetricTreatment::mean_dilatation;
+  int mesh_level = 1;
+  int element_order = 2;  // 1: Q1/P0, 2: Q2/P1
+  VolumetricTreatment treatment = VolumetricTreatment::projected_dilatation;
   PressurePathSpec path;
 };
 
@@ -44,6 +45,7 @@ struct RraResult {
   PressurePathResult path;
   Vector final_positions;
   std::vector<ElementResult> final_element_results;
+  std::string element_name;
   double tube_mass_kg = 0, ring_mass_kg = 0;
   int dofs = 0;
   RraTimings timings;
