@@ -3,6 +3,7 @@
 // incompressible neo-Hookean tube, with the observed order of convergence.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdlib>
 
 #include "fem/forms/axisymmetric_elastic_form.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
@@ -47,7 +48,9 @@ TEST_CASE("patch test: a distorted mesh reproduces a homogeneous finite deformat
     Vector x = problem.reference_positions();
     LinearSolver solver;
     PathCallbacks cb{[](double) {}, {}};
-    const auto result = follow_load_path(problem, x, solver, {1.0}, cb, NewtonSettings{}, StepSettings{});
+    StepSettings steps;
+    steps.verbose = std::getenv("SOFTARM_TEST_VERBOSE") != nullptr;
+    const auto result = follow_load_path(problem, x, solver, {1.0}, cb, NewtonSettings{}, steps);
     REQUIRE(result.completed);
     double max_error = 0.0;
     for (int n = 0; n < mesh.num_nodes(); ++n) {

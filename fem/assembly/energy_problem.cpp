@@ -1,6 +1,7 @@
 #include "fem/assembly/energy_problem.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 
 #include "fem/core/parallel.hpp"
@@ -60,6 +61,9 @@ Evaluation EnergyProblem::evaluate(const Vector& x, bool want_gradient, bool wan
     zero_prescribed(load_gradient);
     out.load_norm = load_gradient.norm();
     out.gradient += load_gradient;
+    double reactions = 0.0;
+    for (int d : constraints_.dofs) reactions += out.gradient[d] * out.gradient[d];
+    out.reaction_norm = std::sqrt(reactions);
     zero_prescribed(out.gradient);
   }
   if (want_hessian) {

@@ -6,6 +6,7 @@
 // replaced by the identity, so the pattern (and CHOLMOD's symbolic analysis)
 // never changes and the matrix stays symmetric positive definite whenever
 // the free block is.
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -27,7 +28,11 @@ struct Evaluation {
   double energy = 0.0;
   Vector gradient;         // zero at prescribed dofs
   SparseMatrix hessian;    // identity rows/columns at prescribed dofs
-  double load_norm = 0.0;  // ‖gradient of the load forms‖ over free dofs: the force scale
+  double load_norm = 0.0;      // ‖gradient of the load forms‖ over free dofs
+  double reaction_norm = 0.0;  // ‖gradient at the prescribed dofs‖: the support reactions
+  /// The force scale Newton's residual is measured against: applied loads or,
+  /// for displacement-driven problems, the reactions they cause.
+  double force_scale() const { return std::max(load_norm, reaction_norm); }
   FormStatus status;
 };
 

@@ -31,7 +31,7 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
       report.message = "non-finite residual";
       break;
     }
-    if (it == 0) scale = std::max({rnorm, cur.load_norm, 1e-300});
+    if (it == 0) scale = std::max({rnorm, cur.force_scale(), 1e-300});
     const double rel_res = rnorm / scale;
     if (!report.rows.empty()) report.rows.back().residual = rel_res;
     const bool residual_ok = rel_res <= settings.residual_tolerance;

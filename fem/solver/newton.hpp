@@ -17,7 +17,7 @@ namespace softarm::fem {
 
 struct NewtonSettings {
   int max_iterations = 20;
-  double residual_tolerance = 1e-8;   // ‖r‖ / max(‖r₀‖, ‖f_load‖)
+  double residual_tolerance = 1e-8;   // ‖r‖ / max(‖r₀‖, ‖f_load‖, ‖reactions‖)
   double update_tolerance = 1e-8;     // ‖δx‖ / max(‖x − X‖, 1e-3 mm)
   double energy_tolerance = 1e-16;    // |δx·r| / |δx₀·r₀|
   int max_line_search = 12;
