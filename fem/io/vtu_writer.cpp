@@ -117,26 +117,25 @@ std::string vtu_document(const Mesh& mesh, const Eigen::MatrixXd& x, const std::
   out.line("    <Piece NumberOfPoints=\"" + std::to_string(num_nodes) + "\" NumberOfCells=\"" +
            std::to_string(num_cells) + "\">");
 
+  auto write_fields = [&out](const std::vector<NamedField>& fields) {
+    for (const auto& f : fields) {
+      out.open_array("Float64", f.name, f.components);
+      out.tuples(f.values, f.components);
+      out.close_array();
+    }
+  };
   out.line("      <PointData Vectors=\"displacement\">");
   out.open_array("Float64", "displacement", 3);
   out.tuples(as_3d(x - mesh.X), 3);
   out.close_array();
-  for (const auto& f : point_fields) {
-    out.open_array("Float64", f.name, f.components);
-    out.tuples(f.values, f.components);
-    out.close_array();
-  }
+  write_fields(point_fields);
   out.line("      </PointData>");
 
   out.line("      <CellData Scalars=\"part\">");
   out.open_array("Int32", "part", 1);
   out.tuples(std::vector<long long>(mesh.part.begin(), mesh.part.end()), 1);
   out.close_array();
-  for (const auto& f : cell_fields) {
-    out.open_array("Float64", f.name, f.components);
-    out.tuples(f.values, f.components);
-    out.close_array();
-  }
+  write_fields(cell_fields);
   out.line("      </CellData>");
 
   out.line("      <Points>");

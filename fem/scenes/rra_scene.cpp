@@ -33,7 +33,7 @@ RraCurvePoint curve_point(const PressureState& s, const Mesh& mesh, const Elasti
   p.chamber_volume_mm3 = s.chamber_volume_mm3;
   p.pv_stiffness_kPa_per_mm3 = s.pv_stiffness_kPa_per_mm3;
   p.newton_iterations = s.newton_iterations;
-  p.extension_mm = extension_sign * (x[2 * free_node + 1] - mesh.X(free_node, 1));
+  p.extension_mm = extension_sign * (x[2 * free_node + 1] - mesh.X(free_node, 1)) + 0.0;  // + 0.0: no "-0.000"
   const int tube = mesh.part_index("tube"), rings = mesh.part_index("rings");
   const auto results = elastic.element_results(x);
   for (int e = 0; e < mesh.num_elements(); ++e) {

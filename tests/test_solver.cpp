@@ -1,0 +1,99 @@
+// The solver layer: the direct solver's indefinite fallback, and the load
+// stepper's exact landing, cut-back after a typed failure, and honest report
+// of a path it cannot finish.
+#include <catch2/catch.hpp>
+
+#include "fem/forms/axisymmetric_elastic_form.hpp"
+#include "fem/mesh/structured_mesh.hpp"
+#include "fem/solver/load_stepper.hpp"
+#include "support/test_problems.hpp"
+
+using namespace softarm;
+using namespace softarm::fem;
+
+TEST_CASE("linear solver: Cholesky for SPD, LU fallback for an indefinite matrix", "[solver]") {
+  // 1D Laplacian (SPD) and the same with a negative diagonal entry (indefinite, nonsingular).
+  const int n = 50;
+  auto make = [&](double first_diagonal) {
+    std::vector<Eigen::Triplet<double>> t;
+    for (int i = 0; i < n; ++i) {
+      t.emplace_back(i, i, i == 0 ? first_diagonal : 2.0);
+      if (i + 1 < n) t.emplace_back(i, i + 1, -1.0), t.emplace_back(i + 1, i, -1.0);
+    }
+    SparseMatrix K(n, n);
+    K.setFromTriplets(t.begin(), t.end());
+    return K;
+  };
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+  LinearSolver solver;
+  for (double d : {2.0, -3.0, 2.0}) {  // back to SPD after an indefinite matrix on the same pattern
+    const SparseMatrix K = make(d);
+    const auto status = solver.factorize(K);
+    CHECK(status == (d > 0 ? LinearSolver::Status::positive_definite : LinearSolver::Status::indefinite));
+    const Eigen::VectorXd x = solver.solve(b);
+    CHECK((K * x - b).norm() < 1e-10 * b.norm());
+  }
+}
+
+namespace {
+// A solid cylinder compressed axially to 40 % of its height: one step would invert elements.
+struct Compression {
+  Mesh mesh = rectangle_mesh(0.0, 1.0, 0.0, 1.0, 4, 4, 0.0);
+  std::unique_ptr<EnergyProblem> problem;
+  Compression(double final_height) {
+    DirichletConstraints c;
+    for (int n : mesh.node_sets.at("axis")) c.fix(2 * n);
+    for (int n : mesh.node_sets.at("bottom")) c.fix(2 * n + 1);
+    for (int n : mesh.node_sets.at("top")) c.fix(2 * n + 1, final_height - 1.0);
+    problem = std::make_unique<EnergyProblem>(flattened_positions(mesh), c);
+    problem->add_form(make_axisymmetric_elastic_form(mesh, {test::neo_hookean(1.0, 50.0)}));
+    problem->finalize();
+  }
+};
+}  // namespace
+
+TEST_CASE("load stepper lands exactly on the requested levels", "[solver]") {
+  Compression c(0.7);
+  Vector x = c.problem->reference_positions();
+  LinearSolver solver;
+  std::vector<double> landed;
+  PathCallbacks cb{[](double) {}, [&](double level, const Vector&, bool is_output, const NewtonReport&) {
+                     if (is_output) landed.push_back(level);
+                   }};
+  const std::vector<double> requested{0.1, 0.37, 0.5, 0.8123, 1.0};
+  const auto r = follow_load_path(*c.problem, x, solver, requested, cb, NewtonSettings{}, StepSettings{});
+  REQUIRE(r.completed);
+  REQUIRE(landed.size() == requested.size());
+  for (std::size_t k = 0; k < requested.size(); ++k) CHECK(landed[k] == requested[k]);  // bit-exact
+}
+
+TEST_CASE("load stepper cuts back after a failure and still reaches the end", "[solver]") {
+  Compression c(0.4);
+  Vector x = c.problem->reference_positions();
+  LinearSolver solver;
+  StepSettings steps;
+  steps.initial_increment = 1.0;  // the whole compression at once: Newton cannot converge
+  steps.max_increment = 1.0;
+  PathCallbacks cb{[](double) {}, {}};
+  const auto r = follow_load_path(*c.problem, x, solver, {1.0}, cb, NewtonSettings{}, steps);
+  INFO(r.message);
+  CHECK(r.completed);
+  CHECK(r.stats.cutbacks >= 1);
+  const int top = c.mesh.node_sets.at("top").front();
+  CHECK(x[2 * top + 1] == Approx(0.4));
+}
+
+TEST_CASE("a path that cannot be finished returns what it reached and why", "[solver]") {
+  Compression c(-0.5);  // the top pushed through the bottom: no admissible state exists past height 0
+  Vector x = c.problem->reference_positions();
+  LinearSolver solver;
+  PathCallbacks cb{[](double) {}, {}};
+  StepSettings steps;
+  steps.min_increment = 1e-3;
+  const auto r = follow_load_path(*c.problem, x, solver, {1.0}, cb, NewtonSettings{}, steps);
+  CHECK_FALSE(r.completed);
+  CHECK(r.failure != Failure::none);
+  CHECK(r.reached_level > 0.3);
+  CHECK(r.reached_level < 2.0 / 3.0);  // height 0 is reached at level 2/3
+  CHECK(x.allFinite());
+}
