@@ -26,6 +26,17 @@ int simulate(const std::string& file, const std::string& output_override, int me
   return result.path.outcome == fem::PathOutcome::stalled ? 1 : 0;
 }
 
+int export_deck(const std::string& file, const std::string& deck_path, double pressure_kPa, int mesh_level_override) {
+  SceneConfig config = load_scene_config(file);
+  if (mesh_level_override > 0) config.rra.mesh_level = mesh_level_override;
+  const double p = pressure_kPa > 0 ? pressure_kPa : config.rra.path.max_pressure_kPa;
+  const fem::Mesh mesh = fem::rra_mesh(config.rra);
+  fem::write_abaqus_deck(deck_path, fem::rra_abaqus_deck(config.rra, mesh, p));
+  std::cout << "wrote " << deck_path << ": " << mesh.num_elements() << " elements, chamber pressure " << p
+            << " kPa (run: ccx -i " << deck_path.substr(0, deck_path.rfind(".inp")) << ")\n";
+  return 0;
+}
+
 void print_schema() {
   // Reading a complete default scene registers every field with its documentation.
   nlohmann::json probe = {{"scene", "rra"},
@@ -54,6 +65,14 @@ int run_cli(int argc, char** argv) {
   sim->add_option("-o,--output", output_dir, "output directory (overrides output.directory)");
   sim->add_option("--mesh-level", mesh_level, "mesh refinement level (overrides mesh.level)");
 
+  std::string deck_path = "out/scene.inp";
+  double deck_pressure_kPa = 0.0;
+  auto* exp = app.add_subcommand("export", "write a scene as an Abaqus/CalculiX input deck (.inp)");
+  exp->add_option("scene", scene_file, "scene JSON file")->required();
+  exp->add_option("-o,--output", deck_path, "deck file (default out/scene.inp)");
+  exp->add_option("--pressure-kPa", deck_pressure_kPa, "chamber pressure of the deck (default: load.max_pressure_kPa)");
+  exp->add_option("--mesh-level", mesh_level, "mesh refinement level (overrides mesh.level)");
+
   auto* schema = app.add_subcommand("schema", "list every scene-config key with its unit, default and valid range");
   add_material_command(app);
 
@@ -68,6 +87,7 @@ int run_cli(int argc, char** argv) {
   if (threads > 0) fem::set_thread_count(threads);
   try {
     if (*sim) return simulate(scene_file, output_dir, mesh_level);
+    if (*exp) return export_deck(scene_file, deck_path, deck_pressure_kPa, mesh_level);
     if (*schema) {
       print_schema();
       return 0;

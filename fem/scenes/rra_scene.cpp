@@ -50,20 +50,41 @@ RraCurvePoint curve_point(const PressureState& s, const Mesh& mesh, const Elasti
 }
 }  // namespace
 
+Mesh rra_mesh(const RraSceneSpec& spec) {
+  validate(spec.design);
+  // Q2 elements get 2 layers through the wall at level 1 (5 nodes), Q1 3 (4 nodes).
+  return spec.element_order == 2 ? to_quadratic(mesh_rra(spec.design, spec.mesh_level, 2))
+                                 : mesh_rra(spec.design, spec.mesh_level, 3);
+}
+
+std::vector<Material> rra_part_materials(const Mesh& mesh, const RraSceneSpec& spec) {
+  std::vector<Material> materials(mesh.part_names.size(), spec.tube_material);
+  if (const int rings = mesh.part_index("rings"); rings >= 0) materials[rings] = spec.ring_material;
+  return materials;
+}
+
+AbaqusDeck rra_abaqus_deck(const RraSceneSpec& spec, const Mesh& mesh, double pressure_kPa) {
+  AbaqusDeck deck;
+  deck.heading = "softarm RRA scene exported for CalculiX/Abaqus";
+  deck.mesh = &mesh;
+  deck.part_materials = rra_part_materials(mesh, spec);
+  deck.clamped_node_sets = {"fixed_end"};
+  deck.axis_node_sets = {"axis"};
+  deck.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
+  deck.chamber_pressure_MPa.at(spec.path.chamber) = pressure_kPa * 1e-3;
+  deck.printed_node_sets = {"free_end_centre"};
+  return deck;
+}
+
 RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress) {
   const auto t_start = Clock::now();
   RraResult out;
-  validate(spec.design);
-  // Q2 elements get 2 layers through the wall at level 1 (5 nodes), Q1 3 (4 nodes).
-  out.mesh = spec.element_order == 2 ? to_quadratic(mesh_rra(spec.design, spec.mesh_level, 2))
-                                     : mesh_rra(spec.design, spec.mesh_level, 3);
+  out.mesh = rra_mesh(spec);
   const Mesh& mesh = out.mesh;
   out.timings.mesh_s = since(t_start);
 
   const auto t_setup = Clock::now();
-  std::vector<Material> materials(mesh.part_names.size(), spec.tube_material);
-  if (const int rings = mesh.part_index("rings"); rings >= 0) materials[rings] = spec.ring_material;
-  auto elastic = make_axisymmetric_elastic_form(mesh, materials, spec.treatment);
+  auto elastic = make_axisymmetric_elastic_form(mesh, rra_part_materials(mesh, spec), spec.treatment);
   out.element_name = elastic->element_name();
   LoadState load;
   load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);

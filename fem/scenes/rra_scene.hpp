@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fem/forms/axisymmetric_elastic_form.hpp"
+#include "fem/io/abaqus_writer.hpp"
 #include "fem/materials/material.hpp"
 #include "fem/mesh/mesh.hpp"
 #include "fem/mesh/rra_design.hpp"
@@ -54,5 +55,12 @@ struct RraResult {
 using RraProgress = std::function<void(const RraCurvePoint&)>;
 
 RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress = {});
+
+/// The scene's mesh (Q1 or Q2 per spec.element_order) and the material of each of its parts.
+Mesh rra_mesh(const RraSceneSpec& spec);
+std::vector<Material> rra_part_materials(const Mesh& mesh, const RraSceneSpec& spec);
+
+/// The same scene as an Abaqus/CalculiX deck at one pressure (mesh must outlive the deck).
+AbaqusDeck rra_abaqus_deck(const RraSceneSpec& spec, const Mesh& mesh, double pressure_kPa);
 
 }  // namespace softarm::fem
