@@ -11,6 +11,7 @@
 #include "fem/forms/chamber_pressure_form.hpp"
 #include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"
+#include "support/form_checks.hpp"
 #include "support/test_problems.hpp"
 
 using namespace softarm;
@@ -45,19 +46,8 @@ std::unique_ptr<Patch> make_patch(const std::vector<Material>& materials, Volume
 
 TEST_CASE("axisymmetric elastic form: gradient and Hessian match finite differences", "[forms]") {
   const double h = 1e-6;
-  struct Case {
-    const char* name;
-    Material material;
-    VolumetricTreatment treatment;
-  };
-  const std::vector<Case> cases = {
-      {"Ogden DS30, mean dilatation", test::dragon_skin_30_ogden(2.0 / 0.7029), VolumetricTreatment::projected_dilatation},
-      {"Ogden DS30, pointwise", test::dragon_skin_30_ogden(2.0 / 0.7029), VolumetricTreatment::pointwise},
-      {"neo-Hookean nearly incompressible", test::neo_hookean(1.0, 1000.0), VolumetricTreatment::projected_dilatation},
-      {"St Venant-Kirchhoff (ABS)", test::abs_plastic(), VolumetricTreatment::projected_dilatation},
-  };
   for (int order : {1, 2})
-    for (const auto& c : cases) {
+    for (const auto& c : test::form_cases()) {
       auto patch = make_patch({c.material}, c.treatment, 0.0, order);
       // A large, non-homogeneous deformation (up to ±0.4 mm on 1 mm elements; ±0.2 mm
       // for Q2, whose edge midpoints sit 0.5 mm from the corners).
@@ -73,22 +63,10 @@ TEST_CASE("chamber pressure form: exact volume, gradient and load stiffness", "[
   for (int order : {1, 2}) {
   const Mesh mesh = order == 1 ? rectangle_mesh(2.0, 5.0, 0.0, 3.0, 3, 3, 0.2)
                                : to_quadratic(rectangle_mesh(2.0, 5.0, 0.0, 3.0, 3, 3, 0.2));
-  LoadState load;
-  load.chamber_pressure_MPa = {0.3};
-  // The pressure form alone, so that its load stiffness is not hidden behind the elastic one.
-  EnergyProblem problem(flattened_positions(mesh), DirichletConstraints{});
-  auto chamber = std::make_shared<ChamberPressureForm>(mesh, 0, load);
-  problem.add_form(chamber);
-  problem.finalize();
+  const test::PressureOnly pressure(mesh, 0.3);
   // Reference: the chain along r = 2 from z = 0 to 3 sweeps a cylinder π r² h.
-  CHECK(chamber->volume(problem.reference_positions()) == Approx(3.141592653589793 * 4.0 * 3.0).epsilon(1e-14));
-  const Vector x = test::perturbed(problem.reference_positions(), 0.4, 11);
-  const auto err = test::finite_difference_errors(problem, x, 1e-6);
-  INFO("Q" << order << ": gradient error " << err.gradient << ", Hessian error " << err.hessian);
-  CHECK(err.gradient < 1e-6);
-  CHECK(err.hessian < 1e-6);
-  // Energy is −p V, so its gradient is −p ∂V/∂x.
-  const auto e = problem.evaluate(x, true, false);
-  CHECK((e.gradient + 0.3 * chamber->volume_gradient(x)).norm() < 1e-12 * e.gradient.norm());
+  CHECK(pressure.chamber->volume(pressure.problem->reference_positions()) ==
+        Approx(3.141592653589793 * 4.0 * 3.0).epsilon(1e-14));
+  pressure.check_derivatives(0.4, order == 1 ? "Q1" : "Q2");
   }
 }

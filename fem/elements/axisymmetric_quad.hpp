@@ -32,7 +32,7 @@ using Mat3 = Eigen::Matrix3d;
 /// F_θΘ, i.e. rows 3i+J = 0, 1, 3, 4, 8 of the 9-vector (row-major) of F.
 /// Elements work in this reduced space, which cuts the cost of Bᵀ A B by ~3×.
 constexpr int kActive = 5;
-constexpr std::array<int, kActive> kActiveComponents{0, 1, 3, 4, 8};
+inline constexpr std::array<int, kActive> kActiveComponents{0, 1, 3, 4, 8};
 
 /// Bilinear quadrilateral with a constant dilatation.
 struct Quad4 {

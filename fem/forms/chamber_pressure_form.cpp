@@ -1,20 +1,24 @@
 #include "fem/forms/chamber_pressure_form.hpp"
 
+#include <Eigen/Geometry>
 #include <array>
 #include <cmath>
 #include <stdexcept>
 
+#include "fem/elements/axisymmetric_quad.hpp"
+
 namespace softarm::fem {
 namespace {
 constexpr double kPi = 3.141592653589793;
-constexpr int kMaxNodes = 3;
+constexpr int kMaxDofs = 27;  // a 9-node facet in 3D
 
-// Edge dofs (r_0, z_0, r_1, z_1, ...) in the facet's node order.
-struct EdgeDerivatives {
-  int n = 0;                                     // nodes on the edge
+// A facet's volume contribution and its exact derivatives with respect to its dofs
+// (dim per node, in the facet's node order).
+struct FacetDerivatives {
+  int dofs = 0;
   double V = 0.0;
-  std::array<double, 2 * kMaxNodes> g{};         // ∂V/∂(r_a, z_a)
-  std::array<double, 4 * kMaxNodes * kMaxNodes> h{};  // column-major (2n)×(2n)
+  std::array<double, kMaxDofs> g{};             // ∂V/∂x_a,i
+  std::array<double, kMaxDofs * kMaxDofs> h{};  // column-major dofs × dofs
 };
 
 // Lagrange shape functions on s ∈ [−1, 1] with nodes in facet order: ends first, then the middle.
@@ -28,29 +32,29 @@ void edge_shape(int n, double s, double* N, double* dN) {
   }
 }
 
-// V_edge = ∫ π r² z' ds and its exact first and second derivatives.
-EdgeDerivatives edge_volume(const Vector& x, const std::vector<int>& nodes) {
-  EdgeDerivatives d;
-  d.n = static_cast<int>(nodes.size());
-  const int m = 2 * d.n;
+// Axisymmetric edge: V_edge = ∫ π r² z' ds and its exact first and second derivatives.
+FacetDerivatives edge_volume(const Vector& x, const std::vector<int>& nodes) {
+  FacetDerivatives d;
+  const int n = static_cast<int>(nodes.size());
+  const int m = d.dofs = 2 * n;
   // n-point Gauss–Legendre integrates the degree-(3n−4) integrand exactly.
   static const double g2[2] = {-0.5773502691896257, 0.5773502691896257}, w2[2] = {1, 1};
   static const double g3[3] = {-0.7745966692414834, 0.0, 0.7745966692414834}, w3[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
-  const double* gs = d.n == 2 ? g2 : g3;
-  const double* ws = d.n == 2 ? w2 : w3;
-  for (int q = 0; q < d.n; ++q) {
-    double N[kMaxNodes], dN[kMaxNodes], r = 0, dz = 0;
-    edge_shape(d.n, gs[q], N, dN);
-    for (int a = 0; a < d.n; ++a) {
+  const double* gs = n == 2 ? g2 : g3;
+  const double* ws = n == 2 ? w2 : w3;
+  for (int q = 0; q < n; ++q) {
+    double N[3], dN[3], r = 0, dz = 0;
+    edge_shape(n, gs[q], N, dN);
+    for (int a = 0; a < n; ++a) {
       r += N[a] * x[2 * nodes[a]];
       dz += dN[a] * x[2 * nodes[a] + 1];
     }
     const double w = ws[q] * kPi;
     d.V += w * r * r * dz;
-    for (int a = 0; a < d.n; ++a) {
+    for (int a = 0; a < n; ++a) {
       d.g[2 * a] += w * 2 * r * N[a] * dz;  // ∂/∂r_a
       d.g[2 * a + 1] += w * r * r * dN[a];  // ∂/∂z_a
-      for (int b = 0; b < d.n; ++b) {
+      for (int b = 0; b < n; ++b) {
         d.h[2 * a + m * (2 * b)] += w * 2 * N[a] * N[b] * dz;       // ∂²/∂r_a∂r_b
         d.h[2 * a + m * (2 * b + 1)] += w * 2 * r * N[a] * dN[b];   // ∂²/∂r_a∂z_b
         d.h[2 * b + 1 + m * (2 * a)] += w * 2 * r * N[a] * dN[b];   // ∂²/∂z_b∂r_a
@@ -59,15 +63,66 @@ EdgeDerivatives edge_volume(const Vector& x, const std::vector<int>& nodes) {
   }
   return d;
 }
+
+// [v]×, the matrix of v × ·.
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d S;
+  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return S;
+}
+
+// 3D quadrilateral facet (Q = Quad4 or Quad9 shape functions and its exact Gauss rule):
+// V_f = (1/3) ∫ det[x, x_s, x_t] ds dt. det is trilinear in (x, x_s, x_t), so
+//   ∂V/∂x_a = (1/3) ∫ N_a (x_s × x_t) + N_a,s (x_t × x) + N_a,t (x × x_s),
+//   ∂²V/∂x_a∂x_b = (1/3) ∫ (N_a,s N_b − N_a N_b,s)[x_t]× + (N_a N_b,t − N_a,t N_b)[x_s]×
+//                          + (N_a,t N_b,s − N_a,s N_b,t)[x]×.
+template <class Q>
+FacetDerivatives quad_facet_volume(const Vector& x, const std::vector<int>& nodes) {
+  constexpr int n = Q::kNodes, m = 3 * n;
+  FacetDerivatives d;
+  d.dofs = m;
+  for (int q = 0; q < Q::kGaussPoints; ++q) {
+    double s, t, w, N[n], Ns[n], Nt[n];
+    Q::gauss_point(q, s, t, w);
+    Q::shape(s, t, N, Ns, Nt);
+    Eigen::Vector3d p = Eigen::Vector3d::Zero(), ps = p, pt = p;
+    for (int a = 0; a < n; ++a) {
+      const Eigen::Vector3d xa = x.segment<3>(3 * nodes[a]);
+      p += N[a] * xa, ps += Ns[a] * xa, pt += Nt[a] * xa;
+    }
+    const double w3 = w / 3.0;
+    const Eigen::Vector3d ns = ps.cross(pt), n_ts = pt.cross(p), n_ps = p.cross(ps);
+    const Eigen::Matrix3d S = skew(p), Ss = skew(ps), St = skew(pt);
+    d.V += w3 * p.dot(ns);
+    for (int a = 0; a < n; ++a) {
+      const Eigen::Vector3d ga = w3 * (N[a] * ns + Ns[a] * n_ts + Nt[a] * n_ps);
+      for (int i = 0; i < 3; ++i) d.g[3 * a + i] += ga[i];
+      for (int b = 0; b < n; ++b) {
+        const Eigen::Matrix3d H = w3 * ((Ns[a] * N[b] - N[a] * Ns[b]) * St + (N[a] * Nt[b] - Nt[a] * N[b]) * Ss +
+                                        (Nt[a] * Ns[b] - Ns[a] * Nt[b]) * S);
+        for (int j = 0; j < 3; ++j)
+          for (int i = 0; i < 3; ++i) d.h[(3 * a + i) + m * (3 * b + j)] += H(i, j);
+      }
+    }
+  }
+  return d;
+}
+
+FacetDerivatives facet_volume(int dim, const Vector& x, const std::vector<int>& nodes) {
+  if (dim == 2) return edge_volume(x, nodes);
+  return nodes.size() == 4 ? quad_facet_volume<axisym::Quad4>(x, nodes) : quad_facet_volume<axisym::Quad9>(x, nodes);
+}
 }  // namespace
 
 ChamberPressureForm::ChamberPressureForm(const Mesh& mesh, int chamber, const LoadState& load)
     : mesh_(mesh), chamber_(chamber), load_(load) {
-  if (mesh.dim != 2) throw std::logic_error("ChamberPressureForm: only axisymmetric meshes so far");
+  if (mesh.dim != 2 && mesh.dim != 3) throw std::logic_error("ChamberPressureForm: meshes are 2D or 3D");
   if (chamber < 0 || chamber >= static_cast<int>(mesh.chambers.size()))
     throw std::logic_error("ChamberPressureForm: no chamber " + std::to_string(chamber));
-  for (const auto& f : mesh.chambers[chamber].facets)
-    if (f.size() < 2 || f.size() > kMaxNodes) throw std::logic_error("ChamberPressureForm: edges need 2 or 3 nodes");
+  for (const auto& f : mesh.chambers[chamber].facets) {
+    const bool ok = mesh.dim == 2 ? (f.size() == 2 || f.size() == 3) : (f.size() == 4 || f.size() == 9);
+    if (!ok) throw std::logic_error("ChamberPressureForm: facets need 2 or 3 nodes (2D), 4 or 9 nodes (3D)");
+  }
 }
 
 double ChamberPressureForm::pressure() const {
@@ -78,22 +133,24 @@ void ChamberPressureForm::declare_pattern(SparsePattern& pattern) {
   blocks_.clear();
   for (const auto& f : mesh_.chambers[chamber_].facets) {
     std::vector<int> dofs;
-    for (int n : f) dofs.insert(dofs.end(), {2 * n, 2 * n + 1});
+    for (int n : f)
+      for (int i = 0; i < mesh_.dim; ++i) dofs.push_back(mesh_.dim * n + i);
     blocks_.push_back(pattern.declare_block(dofs));
   }
 }
 
 double ChamberPressureForm::volume(const Vector& x) const {
   double V = 0.0;
-  for (const auto& f : mesh_.chambers[chamber_].facets) V += edge_volume(x, f).V;
+  for (const auto& f : mesh_.chambers[chamber_].facets) V += facet_volume(mesh_.dim, x, f).V;
   return V;
 }
 
 Vector ChamberPressureForm::volume_gradient(const Vector& x) const {
   Vector g = Vector::Zero(x.size());
+  const int dim = mesh_.dim;
   for (const auto& f : mesh_.chambers[chamber_].facets) {
-    const auto d = edge_volume(x, f);
-    for (int a = 0; a < d.n; ++a) g.segment<2>(2 * f[a]) += Eigen::Vector2d(d.g[2 * a], d.g[2 * a + 1]);
+    const auto d = facet_volume(dim, x, f);
+    for (int k = 0; k < d.dofs; ++k) g[dim * f[k / dim] + k % dim] += d.g[k];
   }
   return g;
 }
@@ -101,16 +158,17 @@ Vector ChamberPressureForm::volume_gradient(const Vector& x) const {
 FormStatus ChamberPressureForm::add(const Vector& x, double* value, Vector* gradient,
                                     HessianAccumulator* hessian) const {
   const double p = pressure();
+  const int dim = mesh_.dim;
   const auto& facets = mesh_.chambers[chamber_].facets;
   for (std::size_t k = 0; k < facets.size(); ++k) {
     const auto& f = facets[k];
-    const auto d = edge_volume(x, f);
+    const auto d = facet_volume(dim, x, f);
     if (value) *value -= p * d.V;
     if (gradient)
-      for (int a = 0; a < d.n; ++a) gradient->segment<2>(2 * f[a]) -= p * Eigen::Vector2d(d.g[2 * a], d.g[2 * a + 1]);
+      for (int i = 0; i < d.dofs; ++i) (*gradient)[dim * f[i / dim] + i % dim] -= p * d.g[i];
     if (hessian && p != 0.0) {
-      std::array<double, 4 * kMaxNodes * kMaxNodes> h;
-      for (int i = 0; i < 4 * d.n * d.n; ++i) h[i] = -p * d.h[i];
+      std::array<double, kMaxDofs * kMaxDofs> h;
+      for (int i = 0; i < d.dofs * d.dofs; ++i) h[i] = -p * d.h[i];
       hessian->add_block(0, blocks_[k], h.data());
     }
   }

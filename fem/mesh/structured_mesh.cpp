@@ -1,6 +1,7 @@
 #include "fem/mesh/structured_mesh.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 
@@ -111,6 +112,107 @@ Mesh rectangle_mesh(double r0, double r1, double z0, double z1, int nr, int nz, 
     for (std::size_t j = 0; j + 1 < inner.size(); ++j) chamber.facets.push_back({inner[j], inner[j + 1]});
     mesh.chambers.push_back(std::move(chamber));
   }
+  return mesh;
+}
+
+namespace {
+
+/// Trilinear hexahedra of a logically (ni × nj × nk) grid: node(i, j, k) gives the node id,
+/// so that periodic grids can wrap. Corners in VTK order: (i, j, k), (i+1, j, k),
+/// (i+1, j+1, k), (i, j+1, k), then the same at k+1; positive Jacobian when
+/// (i, j, k) is a right-handed parametrisation of the solid.
+template <class NodeId>
+Mesh hexahedral_grid(Eigen::MatrixXd X, int ni, int nj, int nk, NodeId node) {
+  Mesh mesh;
+  mesh.dim = 3;
+  mesh.nodes_per_element = 8;
+  mesh.X = std::move(X);
+  for (int k = 0; k < nk; ++k)
+    for (int j = 0; j < nj; ++j)
+      for (int i = 0; i < ni; ++i) {
+        mesh.connectivity.insert(mesh.connectivity.end(),
+                                 {node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k), node(i, j + 1, k),
+                                  node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1),
+                                  node(i, j + 1, k + 1)});
+        mesh.part.push_back(0);
+      }
+  mesh.part_names = {"solid"};
+  return mesh;
+}
+
+}  // namespace
+
+Mesh box_mesh(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int nx, int ny, int nz, double distortion) {
+  if (!((hi - lo).minCoeff() > 0) || nx < 1 || ny < 1 || nz < 1 || !(distortion >= 0 && distortion <= 1))
+    throw std::invalid_argument("box_mesh: need lo < hi on every axis, nx, ny, nz >= 1 and distortion in [0, 1]");
+  const Eigen::Vector3i n(nx, ny, nz);
+  const Eigen::Vector3d h = (hi - lo).cwiseQuotient(n.cast<double>());
+  // With nodes moved by at most 0.1 h_i along axis i, ∂X/∂ξ = diag(h/2)(I + E) with
+  // |E_ik| <= 0.2 (the |∂N_a/∂ξ_k| of a trilinear element sum to 1), so I + E is
+  // diagonally dominant (off-diagonal row sums <= 0.4 < 0.8) and det(∂X/∂ξ) > 0.
+  const double amplitude = 0.1 * distortion;
+  auto id = [&](int i, int j, int k) { return i + (nx + 1) * (j + (ny + 1) * k); };
+  Eigen::MatrixXd X((nx + 1) * (ny + 1) * (nz + 1), 3);
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) {
+        const Eigen::Vector3i ijk(i, j, k);
+        const bool interior = (ijk.array() > 0).all() && (ijk.array() < n.array()).all();
+        for (int c = 0; c < 3; ++c)
+          X(id(i, j, k), c) = lo[c] + ijk[c] * h[c] + (interior ? amplitude * h[c] * hash_unit(i, j, 3 * k + c) : 0.0);
+      }
+  Mesh mesh = hexahedral_grid(std::move(X), nx, ny, nz, id);
+  const char* names[3][2] = {{"x0", "x1"}, {"y0", "y1"}, {"z0", "z1"}};
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) {
+        const Eigen::Vector3i ijk(i, j, k);
+        bool on_boundary = false;
+        for (int c = 0; c < 3; ++c)
+          for (int side = 0; side < 2; ++side)
+            if (ijk[c] == side * n[c]) {
+              mesh.node_sets[names[c][side]].push_back(id(i, j, k));
+              on_boundary = true;
+            }
+        if (on_boundary) mesh.node_sets["boundary"].push_back(id(i, j, k));
+      }
+  return mesh;
+}
+
+Mesh hollow_cylinder_mesh(double r_inner, double r_outer, double length, int n_radial, int n_circumferential,
+                          int n_axial) {
+  if (!(r_inner > 0) || !(r_outer > r_inner) || !(length > 0) || n_radial < 1 || n_circumferential < 3 || n_axial < 1)
+    throw std::invalid_argument(
+        "hollow_cylinder_mesh: need 0 < r_inner < r_outer, length > 0, n_radial, n_axial >= 1, n_circumferential >= 3");
+  constexpr double kTwoPi = 6.283185307179586;
+  const int nr = n_radial + 1, nc = n_circumferential;
+  // Node (i, j, k): radius index i, angle index j (periodic), axial index k.
+  auto id = [&](int i, int j, int k) { return i + nr * ((j % nc) + nc * k); };
+  Eigen::MatrixXd X(nr * nc * (n_axial + 1), 3);
+  for (int k = 0; k <= n_axial; ++k)
+    for (int j = 0; j < nc; ++j)
+      for (int i = 0; i < nr; ++i) {
+        const double r = r_inner + (r_outer - r_inner) * i / n_radial, t = kTwoPi * j / nc;
+        X.row(id(i, j, k)) << r * std::cos(t), r * std::sin(t), length * k / n_axial;
+      }
+  // (r, θ, z) is right-handed (e_r × e_θ = e_z): positive Jacobians.
+  Mesh mesh = hexahedral_grid(std::move(X), n_radial, nc, n_axial, id);
+  for (int k = 0; k <= n_axial; ++k)
+    for (int j = 0; j < nc; ++j) {
+      mesh.node_sets["inner"].push_back(id(0, j, k));
+      mesh.node_sets["outer"].push_back(id(n_radial, j, k));
+    }
+  for (int j = 0; j < nc; ++j)
+    for (int i = 0; i < nr; ++i) {
+      mesh.node_sets["z0"].push_back(id(i, j, 0));
+      mesh.node_sets["z1"].push_back(id(i, j, n_axial));
+    }
+  // Facets with s along θ and t along z: x_s × x_t ∝ e_θ × e_z = e_r, out of the bore.
+  Chamber bore{1, "bore", {}};
+  for (int k = 0; k < n_axial; ++k)
+    for (int j = 0; j < nc; ++j) bore.facets.push_back({id(0, j, k), id(0, j + 1, k), id(0, j + 1, k + 1), id(0, j, k + 1)});
+  mesh.chambers.push_back(std::move(bore));
+  for (auto& [name, nodes] : mesh.node_sets) std::sort(nodes.begin(), nodes.end());
   return mesh;
 }
 

@@ -47,4 +47,25 @@ class QuadMeshBuilder {
 /// Throws std::invalid_argument for r0 < 0, r1 <= r0, z1 <= z0, nr or nz < 1, or distortion outside [0, 1].
 Mesh rectangle_mesh(double r0, double r1, double z0, double z1, int nr, int nz, double distortion = 0);
 
+/// Structured mesh of the box [lo, hi] with nx × ny × nz trilinear hexahedra (dim 3,
+/// 8 nodes, VTK order, positive Jacobian), part "solid". Node sets "x0", "x1", "y0",
+/// "y1", "z0", "z1" (the faces at lo and hi of each axis) and "boundary" (all six).
+/// `distortion` in [0, 1] moves each interior node by up to 0.1·distortion of the
+/// element size along each axis, pseudo-randomly but deterministically; every
+/// element keeps a positive Jacobian. No chamber.
+/// Throws std::invalid_argument for hi <= lo on an axis, a count < 1 or distortion outside [0, 1].
+Mesh box_mesh(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int nx, int ny, int nz, double distortion = 0);
+
+/// Hexahedral mesh of the full (360°) tube r_inner <= r <= r_outer, 0 <= z <= length,
+/// about the z axis: n_radial × n_circumferential × n_axial trilinear hexahedra (dim 3,
+/// 8 nodes), part "solid". Node sets "inner" (r = r_inner), "outer", "z0", "z1".
+/// Chamber 1 ("bore") is the inner surface as 4-node facets whose normal x_s × x_t
+/// points out of the bore, into the wall (+e_r). The bore is open at its ends: the
+/// facets alone do not enclose a volume (mesh.hpp asks for closed chambers), so a
+/// pressure needs end caps, which are the caller's to add.
+/// Throws std::invalid_argument unless 0 < r_inner < r_outer, length > 0, n_radial >= 1,
+/// n_circumferential >= 3 and n_axial >= 1.
+Mesh hollow_cylinder_mesh(double r_inner, double r_outer, double length, int n_radial, int n_circumferential,
+                          int n_axial);
+
 }  // namespace softarm::fem

@@ -1,0 +1,183 @@
+#pragma once
+// Hexahedra in (X, Y, Z): the trilinear Hex8 (2×2×2 Gauss) and the
+// triquadratic Hex27 (3×3×3 Gauss), Lagrange elements on ξ ∈ [−1, 1]³
+// (e.g. Hughes, The Finite Element Method, §3.5).
+//
+// Each element carries the space onto which the dilatation J is projected for
+// the near-incompressible treatment (projected_dilatation_form.hpp): constants
+// for Hex8 (H1/P0, mean dilatation) and discontinuous linears
+// {1, X − X̄, Y − Ȳ, Z − Z̄} for Hex27 (H2/P1, inf-sup stable).
+//
+// Node order is VTK's. Hex8 (VTK_HEXAHEDRON = 12): the bottom face ζ = −1
+// counter-clockwise seen from +ζ, (−1,−1), (1,−1), (1,1), (−1,1), then the top
+// face ζ = +1 in the same order. Hex27 (VTK_TRIQUADRATIC_HEXAHEDRON = 29):
+// corners 0–7 as Hex8; mid-edge nodes 8–19 on the edges (0,1), (1,2), (2,3),
+// (3,0), (4,5), (5,6), (6,7), (7,4), (0,4), (1,5), (2,6), (3,7); face centres
+// 20–25 on the faces ξ = −1, ξ = +1, η = −1, η = +1, ζ = −1, ζ = +1; node 26 at
+// the centre. (The prose of vtkTriQuadraticHexahedron.h lists the faces in
+// another order, but its drawing and its parametric coordinates, which
+// ParaView uses, are the order above.)
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <array>
+
+namespace softarm::fem::hex {
+
+using Mat3 = Eigen::Matrix3d;
+
+/// All nine components of F vary in 3D: the active set is the whole row-major 9-vector.
+constexpr int kActive = 9;
+inline constexpr std::array<int, kActive> kActiveComponents{0, 1, 2, 3, 4, 5, 6, 7, 8};
+
+namespace detail {
+/// 1D Lagrange polynomial of degree `order` (1 or 2) through {−1, 1} or {−1, 0, 1},
+/// the one that is 1 at node coordinate c ∈ {−1, 0, 1}, and its derivative at s.
+template <int order>
+void line_shape(double s, int c, double& l, double& dl) {
+  if constexpr (order == 1) {
+    l = 0.5 * (1 + c * s), dl = 0.5 * c;
+  } else if (c == 0) {
+    l = 1 - s * s, dl = -2 * s;
+  } else {
+    l = 0.5 * s * (s + c), dl = s + 0.5 * c;
+  }
+}
+
+/// Gauss–Legendre point q of the (order+1)³ tensor rule: exact for degree 2·order + 1 per direction.
+template <int order>
+void tensor_gauss_point(int q, Eigen::Vector3d& xi, double& w) {
+  constexpr int n = order + 1;
+  constexpr double g1 = 0.5773502691896257, g2 = 0.7745966692414834;  // 1/√3, √(3/5)
+  constexpr double s1[2] = {-g1, g1}, w1[2] = {1.0, 1.0};
+  constexpr double s2[3] = {-g2, 0.0, g2}, w2[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+  const double* s = order == 1 ? s1 : s2;
+  const double* ws = order == 1 ? w1 : w2;
+  const int i = q % n, j = (q / n) % n, k = q / (n * n);
+  xi << s[i], s[j], s[k];
+  w = ws[i] * ws[j] * ws[k];
+}
+
+/// Tensor-product shape functions N_a = l(ξ) l(η) l(ζ) and their ξ-gradients.
+template <int order, int nodes>
+void tensor_shape(const int (&ref)[nodes][3], const Eigen::Vector3d& xi, double* N, Eigen::Matrix<double, nodes, 3>& dN) {
+  for (int a = 0; a < nodes; ++a) {
+    double l[3], dl[3];
+    for (int d = 0; d < 3; ++d) line_shape<order>(xi[d], ref[a][d], l[d], dl[d]);
+    N[a] = l[0] * l[1] * l[2];
+    dN(a, 0) = dl[0] * l[1] * l[2];
+    dN(a, 1) = l[0] * dl[1] * l[2];
+    dN(a, 2) = l[0] * l[1] * dl[2];
+  }
+}
+}  // namespace detail
+
+/// Trilinear hexahedron with a constant dilatation.
+struct Hex8 {
+  static constexpr int kNodes = 8, kGaussPoints = 8, kDilatationModes = 1, kOrder = 1;
+  static constexpr const char* name = "H1/P0 (mean dilatation)";
+  static constexpr int kReference[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                                           {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+  static void shape(const Eigen::Vector3d& xi, double* N, Eigen::Matrix<double, kNodes, 3>& dN) {
+    detail::tensor_shape<kOrder>(kReference, xi, N, dN);
+  }
+  static void gauss_point(int q, Eigen::Vector3d& xi, double& w) { detail::tensor_gauss_point<kOrder>(q, xi, w); }
+};
+
+/// Triquadratic (27-node Lagrange) hexahedron with a linear dilatation.
+struct Hex27 {
+  static constexpr int kNodes = 27, kGaussPoints = 27, kDilatationModes = 4, kOrder = 2;
+  static constexpr const char* name = "H2/P1 (projected dilatation)";
+  static constexpr int kReference[27][3] = {
+      {-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1},  // corners
+      {0, -1, -1},  {1, 0, -1},  {0, 1, -1}, {-1, 0, -1},                                              // bottom edges
+      {0, -1, 1},   {1, 0, 1},   {0, 1, 1},  {-1, 0, 1},                                               // top edges
+      {-1, -1, 0},  {1, -1, 0},  {1, 1, 0},  {-1, 1, 0},                                               // vertical edges
+      {-1, 0, 0},   {1, 0, 0},   {0, -1, 0}, {0, 1, 0},  {0, 0, -1},  {0, 0, 1},                       // face centres
+      {0, 0, 0}};                                                                                      // centre
+  static void shape(const Eigen::Vector3d& xi, double* N, Eigen::Matrix<double, kNodes, 3>& dN) {
+    detail::tensor_shape<kOrder>(kReference, xi, N, dN);
+  }
+  static void gauss_point(int q, Eigen::Vector3d& xi, double& w) { detail::tensor_gauss_point<kOrder>(q, xi, w); }
+};
+
+/// Reference-configuration data of one Gauss point (computed once per mesh).
+template <class E>
+struct ReferencePoint {
+  std::array<double, E::kNodes> N{};                // shape functions
+  Eigen::Matrix<double, E::kNodes, 3> dN_dX;        // dN_dX(a, J) = ∂N_a/∂X_J
+  double dV = 0.0;                                  // det(∂X/∂ξ) w
+  Eigen::Matrix<double, E::kDilatationModes, 1> phi;  // dilatation basis at this point
+};
+
+template <class E>
+using NodalCoordinates = Eigen::Matrix<double, E::kNodes, 3>;
+template <class E>
+using GradientOperator = Eigen::Matrix<double, kActive, 3 * E::kNodes>;  // δF (row-major 9-vector) = B δx_e
+
+/// Precomputes the Gauss-point data of an element with reference nodal coordinates X
+/// (rows (X, Y, Z)). Returns false if the element is inverted or degenerate at a Gauss point.
+template <class E>
+bool reference_points(const NodalCoordinates<E>& X, std::array<ReferencePoint<E>, E::kGaussPoints>& out) {
+  // The dilatation basis {1, X − X̄, Y − Ȳ, Z − Z̄} is centred on the element for conditioning.
+  const Eigen::RowVector3d centre = X.colwise().mean();
+  for (int q = 0; q < E::kGaussPoints; ++q) {
+    Eigen::Vector3d xi;
+    double w;
+    E::gauss_point(q, xi, w);
+    ReferencePoint<E>& p = out[q];
+    Eigen::Matrix<double, E::kNodes, 3> dN_dxi;
+    E::shape(xi, p.N.data(), dN_dxi);
+    const Mat3 Jac = X.transpose() * dN_dxi;  // Jac(i, k) = ∂X_i/∂ξ_k
+    const double det = Jac.determinant();
+    if (!(det > 0.0)) return false;
+    p.dN_dX = dN_dxi * Jac.inverse();  // ∂N/∂X_J = Σ_k ∂N/∂ξ_k ∂ξ_k/∂X_J
+    p.dV = det * w;
+    p.phi[0] = 1.0;
+    if constexpr (E::kDilatationModes == 4) {
+      Eigen::RowVector3d Xq = Eigen::RowVector3d::Zero();
+      for (int a = 0; a < E::kNodes; ++a) Xq += p.N[a] * X.row(a);
+      p.phi.template tail<3>() = (Xq - centre).transpose();
+    }
+  }
+  return true;
+}
+
+/// Deformation gradient F_iJ = Σ_a x_ai ∂N_a/∂X_J at a Gauss point.
+template <class E>
+Mat3 deformation_gradient(const ReferencePoint<E>& p, const NodalCoordinates<E>& x) {
+  return x.transpose() * p.dN_dX;
+}
+
+/// δF (row-major 9-vector) = B δx_e, element dofs ordered (x_0, y_0, z_0, x_1, ...):
+/// dof (a, i) touches rows 3i + J with weight ∂N_a/∂X_J.
+template <class E>
+GradientOperator<E> gradient_operator(const ReferencePoint<E>& p) {
+  GradientOperator<E> B = GradientOperator<E>::Zero();
+  for (int a = 0; a < E::kNodes; ++a)
+    for (int i = 0; i < 3; ++i)
+      for (int J = 0; J < 3; ++J) B(3 * i + J, 3 * a + i) = p.dN_dX(a, J);
+  return B;
+}
+
+/// K += Bᵀ D B for a symmetric 9×9 D, using the structure of B (three non-zeros
+/// per column, see gradient_operator): 3× fewer operations than the dense product.
+template <class E, class Matrix>
+void add_BtDB(const ReferencePoint<E>& p, const Eigen::Matrix<double, kActive, kActive>& D, Matrix& K) {
+  constexpr int n = E::kNodes;
+  Eigen::Matrix<double, kActive, 3 * n> DB;  // D B, column by column
+  for (int b = 0; b < n; ++b)
+    for (int k = 0; k < 3; ++k)
+      DB.col(3 * b + k) = D.col(3 * k) * p.dN_dX(b, 0) + D.col(3 * k + 1) * p.dN_dX(b, 1) + D.col(3 * k + 2) * p.dN_dX(b, 2);
+  for (int a = 0; a < n; ++a)
+    for (int i = 0; i < 3; ++i) {
+      const int row = 3 * a + i;
+      for (int col = row; col < 3 * n; ++col) {  // upper triangle, mirrored below
+        const double k = p.dN_dX(a, 0) * DB(3 * i, col) + p.dN_dX(a, 1) * DB(3 * i + 1, col) +
+                         p.dN_dX(a, 2) * DB(3 * i + 2, col);
+        K(row, col) += k;
+        if (col != row) K(col, row) += k;
+      }
+    }
+}
+
+}  // namespace softarm::fem::hex

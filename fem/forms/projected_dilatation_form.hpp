@@ -1,0 +1,281 @@
+#pragma once
+// The strain energy of a solid body with the projected-dilatation treatment,
+// written once for every element family (axisymmetric quadrilaterals,
+// hexahedra). See axisymmetric_elastic_form.hpp for the formulation:
+//     Π_e = ∫ W̄(C) dV + ∫ U(θ) dV,   θ = Π_h J (L² projection of J onto the element's dilatation space),
+// with the pointwise U(J) for laws without the volumetric split or on request.
+//
+// An element family is a namespace (fem::axisym, fem::hex) that provides, for each
+// element type E (kNodes, kGaussPoints, kDilatationModes, name):
+//   ReferencePoint<E> (members dV and phi), and the functions found by
+//   argument-dependent lookup reference_points<E>, deformation_gradient<E>,
+//   gradient_operator<E> and add_BtDB<E>, working on the `Active` components
+//   `Components` (row 3i+J of the row-major 9-vector of F) that vary in that family.
+// Included only by the .cpp files that instantiate it.
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "fem/core/parallel.hpp"
+#include "fem/forms/axisymmetric_elastic_form.hpp"
+#include "fem/materials/principal_stress.hpp"
+
+namespace softarm::fem {
+
+template <class E, template <class> class Point, int Dim, int Active, const std::array<int, Active>& Components>
+class ProjectedDilatationForm final : public ElasticForm {
+  static constexpr int kDofs = Dim * E::kNodes, kModes = E::kDilatationModes;
+  using VecA = Eigen::Matrix<double, Active, 1>;
+  using MatA = Eigen::Matrix<double, Active, Active>;
+  using Coordinates = Eigen::Matrix<double, E::kNodes, Dim>;
+  using ElementVector = Eigen::Matrix<double, kDofs, 1>;
+  using ElementMatrix = Eigen::Matrix<double, kDofs, kDofs>;
+  using ModeVector = Eigen::Matrix<double, kModes, 1>;
+  using ModeMatrix = Eigen::Matrix<double, kModes, kModes>;
+  using Points = std::array<Point<E>, E::kGaussPoints>;
+
+  struct ElementEnergy {
+    double W = 0.0;
+    ElementVector g = ElementVector::Zero();
+    ElementMatrix K = ElementMatrix::Zero();
+  };
+
+  // Active components of a 3×3 tensor.
+  static VecA active(const Mat3& M) {
+    VecA v;
+    for (int k = 0; k < Active; ++k) v[k] = M(Components[k] / 3, Components[k] % 3);
+    return v;
+  }
+
+  // Active block of the 9×9 tangent A(3i+J, 3k+L) = ∂P_iJ/∂F_kL.
+  static MatA active(const Tangent9& A) {
+    MatA a;
+    for (int r = 0; r < Active; ++r)
+      for (int c = 0; c < Active; ++c) a(r, c) = A(Components[r], Components[c]);
+    return a;
+  }
+
+  // ∂²J/∂F∂F = J (F⁻¹_Ji F⁻¹_Lk − F⁻¹_Jk F⁻¹_Li), active block.
+  static MatA jacobian_hessian(double J, const Mat3& Finv) {
+    MatA H;
+    for (int r = 0; r < Active; ++r) {
+      const int i = Components[r] / 3, Ji = Components[r] % 3;
+      for (int c = 0; c < Active; ++c) {
+        const int k = Components[c] / 3, L = Components[c] % 3;
+        H(r, c) = J * (Finv(Ji, i) * Finv(L, k) - Finv(Ji, k) * Finv(L, i));
+      }
+    }
+    return H;
+  }
+
+ public:
+  ProjectedDilatationForm(const Mesh& mesh, std::vector<Material> materials, VolumetricTreatment treatment)
+      : mesh_(mesh), materials_(std::move(materials)), treatment_(treatment) {
+    if (materials_.size() < mesh.part_names.size())
+      throw std::logic_error("elastic form: a material is missing for a mesh part");
+    const int ne = mesh.num_elements();
+    reference_.resize(ne);
+    projection_inverse_.resize(ne);
+    for (int e = 0; e < ne; ++e) {
+      const Coordinates Xe = nodal(mesh.X, e);
+      if (!reference_points<E>(Xe, reference_[e]))
+        throw std::logic_error("mesh element " + std::to_string(e) + " is inverted or degenerate");
+      // L² projection onto the dilatation space: M θ = ∫ φ J dV, M = ∫ φ φᵀ dV.
+      ModeMatrix M = ModeMatrix::Zero();
+      for (const auto& p : reference_[e]) M += p.dV * p.phi * p.phi.transpose();
+      projection_inverse_[e] = M.inverse();
+    }
+  }
+
+  std::string element_name() const override { return E::name; }
+
+  void declare_pattern(SparsePattern& pattern) override {
+    blocks_.resize(mesh_.num_elements());
+    for (int e = 0; e < mesh_.num_elements(); ++e) {
+      std::array<int, kDofs> dofs;
+      for (int a = 0; a < E::kNodes; ++a)
+        for (int i = 0; i < Dim; ++i) dofs[Dim * a + i] = Dim * mesh_.element(e)[a] + i;
+      blocks_[e] = pattern.declare_block(dofs);
+    }
+  }
+
+  FormStatus add(const Vector& x, double* value, Vector* gradient, HessianAccumulator* hessian) const override {
+    const int threads = thread_count();
+    std::vector<double> values(threads, 0.0);
+    std::vector<Vector> gradients(gradient ? threads : 0, Vector::Zero(x.size()));
+    std::vector<FormStatus> status(threads);
+    parallel_for(mesh_.num_elements(), [&](int begin, int end, int t) {
+      for (int e = begin; e < end; ++e) {
+        ElementEnergy E_;
+        status[t] = element(e, x, gradient != nullptr, hessian != nullptr, E_);
+        if (!status[t].ok) return;
+        values[t] += E_.W;
+        const int* nodes = mesh_.element(e);
+        if (gradient)
+          for (int a = 0; a < E::kNodes; ++a)
+            gradients[t].template segment<Dim>(Dim * nodes[a]) += E_.g.template segment<Dim>(Dim * a);
+        if (hessian) hessian->add_block(t, blocks_[e], E_.K.data());
+      }
+    });
+    for (const auto& s : status)
+      if (!s.ok) return s;
+    for (int t = 0; t < threads; ++t) {
+      if (value) *value += values[t];
+      if (gradient) *gradient += gradients[t];
+    }
+    return FormStatus::fine();
+  }
+
+  std::vector<ElementResult> element_results(const Vector& x) const override {
+    std::vector<ElementResult> results(mesh_.num_elements());
+    for (int e = 0; e < mesh_.num_elements(); ++e) {
+      const HyperelasticLaw& law = *materials_[mesh_.part[e]].law;
+      const auto xe = nodal(x, e);
+      const bool projected = law.has_volumetric_split() && treatment_ == VolumetricTreatment::projected_dilatation;
+      std::array<Mat3, E::kGaussPoints> F;
+      std::array<double, E::kGaussPoints> J, theta;
+      for (int q = 0; q < E::kGaussPoints; ++q) {
+        F[q] = deformation_gradient<E>(reference_[e][q], xe);
+        J[q] = F[q].determinant();
+      }
+      dilatations(e, J, theta);
+      ElementResult& r = results[e];
+      r.max_principal_cauchy_MPa = -1e300;
+      r.max_principal_stretch = 0.0;
+      r.min_principal_stretch = 1e300;
+      double volume = 0.0, theta_sum = 0.0;
+      for (int q = 0; q < E::kGaussPoints; ++q) {
+        const double Jv = projected ? theta[q] : J[q];
+        theta_sum += Jv * reference_[e][q].dV;
+        volume += reference_[e][q].dV;
+        const auto s = evaluate_principal(law, F[q], false);
+        if (!s || !(J[q] > 0.0) || !(Jv > 0.0)) continue;
+        // Stretches of F̄ = (θ/J)^(1/3) F: the kinematics the energy actually sees.
+        const Mat3 Fbar = std::cbrt(Jv / J[q]) * F[q];
+        Eigen::SelfAdjointEigenSolver<Mat3> eig(Fbar.transpose() * Fbar, Eigen::EigenvaluesOnly);
+        const double lmax = std::sqrt(eig.eigenvalues()[2]);
+        r.max_principal_stretch = std::max(r.max_principal_stretch, lmax);
+        r.min_principal_stretch = std::min(r.min_principal_stretch, std::sqrt(eig.eigenvalues()[0]));
+        r.max_principal_log_strain = std::max(r.max_principal_log_strain, std::log(lmax));
+        // Kirchhoff stress of the principal part over the volume ratio, plus the pressure U'(θ).
+        Mat3 sigma = s->P * F[q].transpose() / Jv;
+        if (law.has_volumetric_split()) sigma += law.volumetric(Jv).dU * Mat3::Identity();
+        Eigen::SelfAdjointEigenSolver<Mat3> es(sigma, Eigen::EigenvaluesOnly);
+        r.max_principal_cauchy_MPa = std::max(r.max_principal_cauchy_MPa, es.eigenvalues()[2]);
+      }
+      r.dilatation = theta_sum / volume;
+    }
+    return results;
+  }
+
+ private:
+  template <class Positions>
+  Coordinates nodal(const Positions& x, int e) const {
+    Coordinates xe;
+    const int* nodes = mesh_.element(e);
+    for (int a = 0; a < E::kNodes; ++a) {
+      if constexpr (std::is_same_v<Positions, Vector>)
+        xe.row(a) = x.template segment<Dim>(Dim * nodes[a]).transpose();
+      else
+        xe.row(a) = x.row(nodes[a]);
+    }
+    return xe;
+  }
+
+  // θ at the Gauss points: the L² projection of J onto the dilatation space.
+  void dilatations(int e, const std::array<double, E::kGaussPoints>& J, std::array<double, E::kGaussPoints>& theta) const {
+    ModeVector rhs = ModeVector::Zero();
+    for (int q = 0; q < E::kGaussPoints; ++q) rhs += reference_[e][q].dV * J[q] * reference_[e][q].phi;
+    const ModeVector coeffs = projection_inverse_[e] * rhs;
+    for (int q = 0; q < E::kGaussPoints; ++q) theta[q] = reference_[e][q].phi.dot(coeffs);
+  }
+
+  // Energy, gradient and Hessian of one element.
+  //   Volumetric part Π_v = Σ_q U(θ_q) dV_q with θ = φᵀ M⁻¹ G_J, G_J = Σ_q φ_q J_q dV_q.
+  //   Gradient: Σ_q dV_q Bᵀ ∂J/∂F · s_q, with the "pressure" s_q = φ_qᵀ M⁻¹ Σ_p U'(θ_p) φ_p dV_p.
+  //   Hessian: Σ_q dV_q Bᵀ s_q ∂²J/∂F² B + Gᵀ M⁻¹ D M⁻¹ G, D = Σ_q U''(θ_q) φ_q φ_qᵀ dV_q,
+  //   G = Σ_q φ_q dV_q (Bᵀ ∂J/∂F)ᵀ. For a constant φ this is the mean-dilatation element.
+  FormStatus element(int e, const Vector& x, bool want_gradient, bool want_hessian, ElementEnergy& out) const {
+    const HyperelasticLaw& law = *materials_[mesh_.part[e]].law;
+    const bool split = law.has_volumetric_split();
+    const bool projected = split && treatment_ == VolumetricTreatment::projected_dilatation;
+    const auto xe = nodal(x, e);
+    const Points& points = reference_[e];
+
+    std::array<Mat3, E::kGaussPoints> F;
+    std::array<double, E::kGaussPoints> J, theta;
+    for (int q = 0; q < E::kGaussPoints; ++q) {
+      F[q] = deformation_gradient<E>(points[q], xe);
+      J[q] = F[q].determinant();
+      if (!(J[q] > 0.0)) return FormStatus::inverted(e, "inverted element (det F <= 0 at a Gauss point)");
+    }
+    ModeVector pressure = ModeVector::Zero();  // M⁻¹ Σ U'(θ) φ dV
+    ModeMatrix D = ModeMatrix::Zero();
+    if (projected) {
+      dilatations(e, J, theta);
+      ModeVector u = ModeVector::Zero();
+      for (int q = 0; q < E::kGaussPoints; ++q) {
+        if (!(theta[q] > 0.0)) return FormStatus::inverted(e, "inverted element (projected dilatation <= 0)");
+        const VolumetricResponse U = law.volumetric(theta[q]);
+        out.W += U.U * points[q].dV;
+        u += U.dU * points[q].dV * points[q].phi;
+        D += U.d2U * points[q].dV * points[q].phi * points[q].phi.transpose();
+      }
+      pressure = projection_inverse_[e] * u;
+    }
+
+    Eigen::Matrix<double, kModes, kDofs> G = Eigen::Matrix<double, kModes, kDofs>::Zero();
+    for (int q = 0; q < E::kGaussPoints; ++q) {
+      const Point<E>& p = points[q];
+      const auto s = evaluate_principal(law, F[q], want_hessian);
+      if (!s) return FormStatus::inverted(e, "inverted element (det F <= 0 at a Gauss point)");
+      out.W += s->W * p.dV;
+      if (!want_gradient && !want_hessian) {
+        if (split && !projected) out.W += law.volumetric(J[q]).U * p.dV;
+        continue;
+      }
+      const auto B = gradient_operator<E>(p);
+      VecA stress = active(s->P);
+      MatA tangent;
+      if (want_hessian) tangent = active(s->A);
+      if (split) {
+        const Mat3 Finv = F[q].inverse();
+        const VecA dJ = active(Mat3(J[q] * Finv.transpose()));  // ∂J/∂F = J F⁻ᵀ
+        double dU;
+        if (projected) {
+          dU = p.phi.dot(pressure);
+          if (want_hessian) G.noalias() += p.phi * (p.dV * B.transpose() * dJ).transpose();
+        } else {  // pointwise U(J)
+          const VolumetricResponse U = law.volumetric(J[q]);
+          out.W += U.U * p.dV;
+          dU = U.dU;
+          if (want_hessian) tangent.noalias() += U.d2U * dJ * dJ.transpose();
+        }
+        stress += dU * dJ;
+        if (want_hessian) tangent += dU * jacobian_hessian(J[q], Finv);
+      }
+      if (want_gradient) out.g.noalias() += p.dV * B.transpose() * stress;
+      if (want_hessian) add_BtDB<E>(p, MatA(p.dV * tangent), out.K);
+    }
+    if (projected && want_hessian) {
+      const auto PG = (projection_inverse_[e] * G).eval();
+      out.K.noalias() += PG.transpose() * D * PG;
+    }
+    if (!std::isfinite(out.W)) return FormStatus::inverted(e, "non-finite strain energy");
+    return FormStatus::fine();
+  }
+
+  const Mesh& mesh_;
+  std::vector<Material> materials_;
+  VolumetricTreatment treatment_;
+  std::vector<Points> reference_;
+  std::vector<ModeMatrix> projection_inverse_;
+  std::vector<int> blocks_;
+};
+
+}  // namespace softarm::fem

@@ -1,0 +1,307 @@
+// The 3D (hexahedral) core: element and pressure-load derivatives against
+// central finite differences, the exact volume of a box cavity, the patch test
+// under a non-symmetric homogeneous deformation, and nearly incompressible
+// Ogden uniaxial tension against the closed form; Hex8 (H1/P0) and Hex27 (H2/P1).
+//
+// Finite-difference tolerance 1e-6, as in test_forms.cpp: with coordinates
+// O(1 mm), moduli O(0.1–3000 MPa) and h = 1e-6 mm, the truncation error is
+// ~1e-12 relative and round-off ~1e-16/1e-6·|Π|/|g| ≈ 1e-9…1e-8, so 1e-6
+// leaves two orders of margin while a wrong term shows as O(1).
+#include <Eigen/LU>
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <map>
+
+#include "fem/forms/axisymmetric_elastic_form.hpp"
+#include "fem/forms/chamber_pressure_form.hpp"
+#include "fem/forms/solid_elastic_form.hpp"
+#include "fem/mesh/quadratic_mesh.hpp"
+#include "fem/mesh/structured_mesh.hpp"
+#include "fem/solver/load_stepper.hpp"
+#include "support/form_checks.hpp"
+#include "support/test_problems.hpp"
+
+using namespace softarm;
+using namespace softarm::fem;
+
+namespace {
+
+Mesh box(const Eigen::Vector3d& hi, int nx, int ny, int nz, double distortion, int order) {
+  const Mesh linear = box_mesh(Eigen::Vector3d::Zero(), hi, nx, ny, nz, distortion);
+  return order == 1 ? linear : to_quadratic_3d(linear);
+}
+
+/// The boundary faces of a Hex8 mesh as a chamber whose cavity is the meshed body
+/// itself (normals outward): the closed surface of a box-shaped cavity.
+Chamber boundary_chamber(const Mesh& mesh) {
+  // Faces of the VTK hexahedron, ordered so that x_s × x_t points out of the element.
+  constexpr int kFaces[6][4] = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}};
+  std::map<std::vector<int>, std::vector<std::vector<int>>> faces;  // sorted corners → the faces with them
+  for (int e = 0; e < mesh.num_elements(); ++e)
+    for (const auto& local : kFaces) {
+      std::vector<int> face;
+      for (int a : local) face.push_back(mesh.element(e)[a]);
+      auto key = face;
+      std::sort(key.begin(), key.end());
+      faces[key].push_back(face);
+    }
+  Chamber chamber{1, "box", {}};
+  for (const auto& [key, list] : faces)
+    if (list.size() == 1) chamber.facets.push_back(list.front());
+  return chamber;
+}
+
+/// Solves the problem from its reference state to full load; returns the final positions.
+Vector solve(const EnergyProblem& problem, const std::vector<double>& levels, const PathCallbacks& cb) {
+  Vector x = problem.reference_positions();
+  LinearSolver solver;
+  const auto result = follow_load_path(problem, x, solver, levels, cb, NewtonSettings{}, StepSettings{});
+  REQUIRE(result.completed);
+  return x;
+}
+
+}  // namespace
+
+TEST_CASE("3D elastic form: gradient and Hessian match finite differences", "[solid3d]") {
+  for (int order : {1, 2})
+    for (const auto& c : test::form_cases()) {
+      // Two elements along each axis of 1 mm: every node couples across element faces.
+      const Mesh mesh = order == 1 ? box({2, 2, 2}, 2, 2, 2, 1.0, 1) : box({2, 1, 1}, 2, 1, 1, 1.0, 2);
+      EnergyProblem problem(flattened_positions(mesh), DirichletConstraints{});
+      problem.add_form(make_solid_elastic_form(mesh, {c.material}, c.treatment));
+      problem.finalize();
+      // A large, non-homogeneous deformation: ±0.2 mm on 1 mm elements (±0.1 mm for
+      // Hex27, whose mid-edge nodes sit 0.5 mm from the corners).
+      const Vector x = test::perturbed(problem.reference_positions(), order == 1 ? 0.2 : 0.1);
+      const auto err = test::finite_difference_errors(problem, x, 1e-6);
+      INFO("Hex" << (order == 1 ? 8 : 27) << ", " << c.name << ": gradient error " << err.gradient
+                 << ", Hessian error " << err.hessian);
+      CHECK(err.gradient < 1e-6);
+      CHECK(err.hessian < 1e-6);
+    }
+}
+
+TEST_CASE("3D chamber pressure form: exact box volume, gradient and load stiffness", "[solid3d]") {
+  for (int order : {1, 2}) {
+    Mesh mesh = box_mesh(Eigen::Vector3d::Zero(), Eigen::Vector3d(2, 3, 4), 2, 2, 2, 1.0);
+    mesh.chambers.push_back(boundary_chamber(mesh));
+    if (order == 2) mesh = to_quadratic_3d(mesh);
+    const test::PressureOnly pressure(mesh, 0.3);
+    // The facets are bilinear (or biquadratic reproducing bilinear) patches of the
+    // planar box faces (distortion moves interior nodes only): V = 2·3·4 to round-off.
+    CHECK(pressure.chamber->volume(pressure.problem->reference_positions()) == Approx(24.0).epsilon(1e-14));
+    // A homogeneous deformation maps the box to a parallelepiped of volume det F0 · 24.
+    Eigen::Matrix3d F0;
+    F0 << 1.2, 0.3, 0.1, -0.1, 0.9, 0.2, 0.05, 0.15, 1.1;
+    Vector y(3 * mesh.num_nodes());
+    for (int n = 0; n < mesh.num_nodes(); ++n) y.segment<3>(3 * n) = F0 * mesh.X.row(n).transpose();
+    CHECK(pressure.chamber->volume(y) == Approx(24.0 * F0.determinant()).epsilon(1e-13));
+    pressure.check_derivatives(0.3, order == 1 ? "4-node facets" : "9-node facets");
+  }
+}
+
+TEST_CASE("3D patch test: a distorted box reproduces a non-symmetric homogeneous deformation", "[solid3d]") {
+  // x = F0 X with shear (F0 non-symmetric) is homogeneous, hence in equilibrium with
+  // no body force. With every boundary node prescribed, interior nodes must land on
+  // it to round-off: the trilinear geometry makes ∂N/∂X·det(∂X/∂ξ) polynomial, of a
+  // degree the 2×2×2 (Hex8) and 3×3×3 (Hex27) rules integrate exactly, and J is
+  // constant, so the projected dilatation equals it.
+  Eigen::Matrix3d F0;
+  F0 << 1.2, 0.3, 0.1, -0.1, 0.9, 0.2, 0.05, 0.15, 1.1;
+  for (int order : {1, 2}) {
+    const Mesh mesh = box({2, 3, 4}, order == 1 ? 3 : 2, order == 1 ? 3 : 2, order == 1 ? 3 : 2, 1.0, order);
+    DirichletConstraints c;
+    for (int n : mesh.node_sets.at("boundary")) {
+      const Eigen::Vector3d u = (F0 - Eigen::Matrix3d::Identity()) * mesh.X.row(n).transpose();
+      for (int i = 0; i < 3; ++i) c.fix(3 * n + i, u[i]);
+    }
+    EnergyProblem problem(flattened_positions(mesh), c);
+    problem.add_form(make_solid_elastic_form(mesh, {test::dragon_skin_30_ogden(1000.0)}));
+    problem.finalize();
+    const Vector x = solve(problem, {1.0}, PathCallbacks{[](double) {}, {}});
+    double max_error = 0.0;
+    for (int n = 0; n < mesh.num_nodes(); ++n)
+      max_error = std::max(max_error, (x.segment<3>(3 * n) - F0 * mesh.X.row(n).transpose()).cwiseAbs().maxCoeff());
+    INFO("Hex" << (order == 1 ? 8 : 27) << ": max nodal error " << max_error << " mm");
+    CHECK(max_error < 1e-9);
+  }
+}
+
+TEST_CASE("3D uniaxial tension of nearly incompressible Ogden matches the incompressible closed form", "[solid3d]") {
+  // As in test_exact_solutions.cpp: Dragon Skin 30's Ogden fit with K/μ0 = 1e4, closed
+  // form P = Σ (2μ_i/α_i)(λ^(α_i−1) − λ^(−α_i/2−1)); the deviation is the
+  // compressibility, O(μ/K) = 1e-4, so 2e-3 is safe and still catches a wrong term.
+  // Symmetry constraints (rollers on the x = 0, y = 0 and z = 0 faces) on a distorted
+  // 1 × 1 × 2 mm bar: the solution is homogeneous, which the patch test covers.
+  const std::vector<double> mu{1.1806, 0.8743, -1.9396}, alpha{1.0698, -1.2370, 0.1347};
+  const double kappa = 1e4 * (mu[0] + mu[1] + mu[2]), stretch = 1.8;
+  for (int order : {1, 2}) {
+    const Mesh mesh = order == 1 ? box({1, 1, 2}, 2, 2, 4, 0.5, 1) : box({1, 1, 2}, 1, 1, 2, 0.5, 2);
+    DirichletConstraints c;
+    for (int n : mesh.node_sets.at("x0")) c.fix(3 * n);
+    for (int n : mesh.node_sets.at("y0")) c.fix(3 * n + 1);
+    for (int n : mesh.node_sets.at("z0")) c.fix(3 * n + 2);
+    for (int n : mesh.node_sets.at("z1")) c.fix(3 * n + 2, (stretch - 1.0) * 2.0);
+    auto elastic = make_solid_elastic_form(mesh, {test::dragon_skin_30_ogden(kappa)});
+    EnergyProblem problem(flattened_positions(mesh), c);
+    problem.add_form(elastic);
+    problem.finalize();
+    int checked = 0;
+    PathCallbacks cb;
+    cb.apply_load = [](double) {};
+    cb.on_converged = [&](double level, const Vector& xs, bool is_output, const NewtonReport&) {
+      if (!is_output) return;
+      Vector g = Vector::Zero(xs.size());
+      REQUIRE(elastic->add(xs, nullptr, &g, nullptr).ok);
+      double force = 0.0;  // axial reaction on the z = 2 face = internal force there
+      for (int n : mesh.node_sets.at("z1")) force += g[3 * n + 2];
+      const double lambda = 1.0 + level * (stretch - 1.0);
+      double exact = 0.0;
+      for (int i = 0; i < 3; ++i)
+        exact += 2 * mu[i] / alpha[i] * (std::pow(lambda, alpha[i] - 1) - std::pow(lambda, -alpha[i] / 2 - 1));
+      INFO("Hex" << (order == 1 ? 8 : 27) << ", stretch " << lambda << ": FEM nominal stress " << force
+                 << " MPa (1 mm² section), closed form " << exact);
+      CHECK(force == Approx(exact).epsilon(2e-3));
+      const int corner = mesh.node_sets.at("x1").back();  // on x = 1: lateral stretch λ^(−1/2)
+      CHECK(xs[3 * corner] / mesh.X(corner, 0) == Approx(1.0 / std::sqrt(lambda)).epsilon(2e-3));
+      ++checked;
+    };
+    solve(problem, {0.25, 0.5, 0.75, 1.0}, cb);
+    CHECK(checked == 4);
+  }
+}
+
+namespace {
+
+/// Closes the open bore of a hollow_cylinder_mesh (chamber 0) with two flat lids, so
+/// that the chamber is a closed surface (mesh.hpp) and −pV its pressure potential.
+/// Each lid is a fan of facets collapsed at a new node on the axis, (axis, p, q, axis)
+/// for a bore edge p → q, oriented out of the cavity; for 9-node facets the fan
+/// adds the midpoints of its radial edges and facet centres. The lid of a plane
+/// z = c contributes (c/3)·(signed area) to V, and its area depends only on the bore
+/// edge nodes (the fan's shared interior edges cancel), so the added nodes, which
+/// belong to no element, are prescribed in place. Returns the added nodes.
+std::vector<int> close_bore(Mesh& mesh, double length) {
+  std::vector<Eigen::RowVector3d> added;
+  auto add_node = [&](const Eigen::RowVector3d& x) {
+    added.push_back(x);
+    return mesh.num_nodes() + static_cast<int>(added.size()) - 1;
+  };
+  auto position = [&](int n) -> Eigen::RowVector3d {
+    return n < mesh.num_nodes() ? Eigen::RowVector3d(mesh.X.row(n)) : added[n - mesh.num_nodes()];
+  };
+  std::vector<std::vector<int>> lids;
+  for (double z : {0.0, length}) {
+    const int axis = add_node(Eigen::RowVector3d(0, 0, z));
+    std::map<int, int> radial_mid;  // bore node → midpoint of its radial fan edge
+    auto mid = [&](int n) {
+      auto it = radial_mid.find(n);
+      if (it == radial_mid.end()) it = radial_mid.emplace(n, add_node(0.5 * (position(n) + position(axis)))).first;
+      return it->second;
+    };
+    for (const auto& f : mesh.chambers[0].facets) {
+      // Bore facet (a, b, c, d; mids ab, bc, cd, da; centre), θ increasing a → b and d → c.
+      const bool bottom = z == 0.0;
+      const int a = bottom ? f[0] : f[3], b = bottom ? f[1] : f[2];
+      if (std::abs(position(a).z() - z) > 1e-12) continue;
+      // Out of the cavity: −e_z at the bottom (reverse the fan), +e_z at the top.
+      const int p = bottom ? b : a, q = bottom ? a : b;
+      std::vector<int> lid{axis, p, q, axis};
+      if (f.size() == 9) {
+        const int edge_mid = bottom ? f[4] : f[6];
+        const int centre = add_node(0.5 * (position(axis) + position(edge_mid)));
+        lid.insert(lid.end(), {mid(p), edge_mid, mid(q), axis, centre});
+      }
+      lids.push_back(lid);
+    }
+  }
+  const int first = mesh.num_nodes();
+  mesh.X.conservativeResize(first + static_cast<int>(added.size()), 3);
+  for (std::size_t k = 0; k < added.size(); ++k) mesh.X.row(first + static_cast<int>(k)) = added[k];
+  mesh.chambers[0].facets.insert(mesh.chambers[0].facets.end(), lids.begin(), lids.end());
+  std::vector<int> nodes(added.size());
+  for (std::size_t k = 0; k < added.size(); ++k) nodes[k] = first + static_cast<int>(k);
+  return nodes;
+}
+
+/// Moves the nodes that to_quadratic_3d put on chords (mid-circumference) onto the
+/// cylinders r = const, so that the Hex27 geometry is the isoparametric tube.
+void snap_to_cylinders(Mesh& mesh, int n_circumferential) {
+  constexpr double kTwoPi = 6.283185307179586;
+  const double step = kTwoPi / n_circumferential;
+  for (int n = 0; n < mesh.num_nodes(); ++n) {
+    const double theta = std::atan2(mesh.X(n, 1), mesh.X(n, 0));
+    const double off = std::remainder(theta, step);  // 0 on a grid angle, ±step/2 on a chord midpoint
+    if (std::abs(off) > 1e-9) mesh.X.block<1, 2>(n, 0) /= std::cos(off);
+  }
+}
+
+// Positions of the mesh's body (elastic form `elastic`) with chamber 0 at pressure p.
+Vector solve_pressurised(const Mesh& mesh, const DirichletConstraints& c, std::shared_ptr<ElasticForm> elastic,
+                         double p) {
+  LoadState load;
+  load.chamber_pressure_MPa = {0.0};
+  EnergyProblem problem(flattened_positions(mesh), c);
+  problem.add_form(std::move(elastic));
+  problem.add_form(std::make_shared<ChamberPressureForm>(mesh, 0, load));
+  problem.finalize();
+  return solve(problem, {1.0}, PathCallbacks{[&](double level) { load.chamber_pressure_MPa[0] = level * p; }, {}});
+}
+
+// Bore radius under pressure p of an incompressible-ish neo-Hookean tube A → B in plane
+// strain (all u_z = 0): 3D Hex27 (nr × nc × 1) and axisymmetric Q2 (nr × 1).
+double bore_radius_3d(int nr, int nc, double A, double B, double L, const Material& m, double p) {
+  Mesh mesh = to_quadratic_3d(hollow_cylinder_mesh(A, B, L, nr, nc, 1));
+  snap_to_cylinders(mesh, nc);
+  const int solid_nodes = mesh.num_nodes();
+  const std::vector<int> lid_nodes = close_bore(mesh, L);
+  DirichletConstraints c;
+  for (int n = 0; n < solid_nodes; ++n) {
+    c.fix(3 * n + 2);                                        // plane strain
+    if (std::abs(mesh.X(n, 1)) < 1e-12) c.fix(3 * n + 1);    // symmetry plane y = 0
+    if (std::abs(mesh.X(n, 0)) < 1e-12) c.fix(3 * n);        // symmetry plane x = 0
+  }
+  for (int n : lid_nodes)
+    for (int i = 0; i < 3; ++i) c.fix(3 * n + i);
+  const Vector x = solve_pressurised(mesh, c, make_solid_elastic_form(mesh, {m}), p);
+  double r = 0.0;  // mean over the bore nodes (they agree to the circumferential discretisation)
+  const auto& inner = mesh.node_sets.at("inner");
+  for (int n : inner) r += x.segment<2>(3 * n).norm();
+  return r / static_cast<double>(inner.size());
+}
+
+double bore_radius_axisymmetric(int nr, double A, double B, double L, const Material& m, double p) {
+  const Mesh mesh = to_quadratic(rectangle_mesh(A, B, 0.0, L, nr, 1));
+  DirichletConstraints c;
+  for (int n = 0; n < mesh.num_nodes(); ++n) c.fix(2 * n + 1);
+  const Vector x = solve_pressurised(mesh, c, make_axisymmetric_elastic_form(mesh, {m}), p);
+  return x[2 * mesh.node_sets.at("inner").front()];
+}
+
+}  // namespace
+
+TEST_CASE("3D tube under internal pressure agrees with the axisymmetric model", "[solid3d]") {
+  // Plane strain, A = 5, B = 10 mm, neo-Hookean μ = 1 MPa, K = 1e3 μ, p = 0.3 MPa (the
+  // bore grows by 28 %). Both models use two quadratic elements through the wall, so
+  // they differ only by the 3D model's circumferential interpolation (of the circle
+  // and of the displacement), whose error falls as (2π/nc)^4 for biquadratic arcs
+  // (isoparametric interpolation of order 2, h^(2+2) for the geometry; e.g. Strang &
+  // Fix §4.4). So the difference must fall by ~2^4 when nc doubles (we ask for an
+  // order above 3) and be small: below 1e-4 of the bore's growth at nc = 32.
+  const double A = 5.0, B = 10.0, L = 1.0, p = 0.3;
+  const Material m = test::neo_hookean(1.0, 1000.0);
+  const double r_axi = bore_radius_axisymmetric(2, A, B, L, m, p);
+  std::vector<double> differences;
+  for (int nc : {16, 32}) {
+    const double r_3d = bore_radius_3d(2, nc, A, B, L, m, p);
+    differences.push_back(std::abs(r_3d - r_axi) / (r_axi - A));
+    INFO("nc = " << nc << ": bore radius 3D " << r_3d << " mm, axisymmetric " << r_axi
+                 << " mm, difference " << differences.back() << " of the growth " << r_axi - A << " mm");
+    CHECK(std::isfinite(r_3d));
+  }
+  const double order = std::log2(differences[0] / differences[1]);
+  INFO("differences " << differences[0] << ", " << differences[1] << ": observed order " << order);
+  CHECK(order > 3.0);
+  CHECK(differences[1] < 1e-4);
+}
