@@ -7,7 +7,9 @@
 #include <memory>
 #include <vector>
 
-#include "fem/forms/axisymmetric_elastic_form.hpp"
+#include "fem/forms/elastic_form.hpp"
+#include "fem/materials/material.hpp"
+#include "fem/mesh/mesh.hpp"
 
 namespace softarm::fem {
 

@@ -13,7 +13,8 @@ namespace softarm::fem {
 /// Axisymmetric: 2-node edges (a, b) in (r, z), chained from the axis around the
 /// cavity so that the enclosed volume V = Σ π (z_b − z_a)(r_a² + r_a r_b + r_b²)/3
 /// is positive (the closing segment on the axis contributes nothing).
-/// 3D: facets (3 or 4 nodes) ordered so that their normals point out of the cavity.
+/// 3D: quadrilateral facets (4 or 9 nodes, VTK order) whose normals point out of the
+/// cavity (into the wall); the facets must close the cavity for V to be a volume.
 struct Chamber {
   int id = 0;            // chamber number as the user sees it (1-based for the SPL)
   std::string name;
