@@ -92,10 +92,15 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const Chamber
                     " kPa. Pressure control cannot pass it; this is the burst mode of this design.";
   } else {
     out.outcome = PathOutcome::stalled;
+    // Well above the threshold the path is plainly not at a limit point; close to it,
+    // the curve is flattening and a limit point may lie just ahead.
+    const bool flattening = ratio < 5 * spec.limit.stiffness_fraction;
     out.diagnosis = "solver stalled at " + fmt(last.pressure_kPa) + " kPa (" + to_string(out.path.failure) + ": " +
-                    out.path.message + ") while dp/dV is still " + fmt(100 * ratio, 3) +
-                    " % of its initial value, so this is not a limit point. Retry with a finer mesh, "
-                    "a smaller solver.initial_increment_fraction or more Newton iterations.";
+                    out.path.message + ") while dp/dV is " + fmt(100 * ratio, 3) + " % of its initial value" +
+                    (flattening ? ": the pressure-volume curve is flattening and a limit point (ballooning) may lie "
+                                  "just ahead, but none was reached. "
+                                : ", so this is not a limit point. ") +
+                    "Retry with a finer mesh, a smaller solver.initial_increment_fraction or more Newton iterations.";
   }
   return out;
 }
