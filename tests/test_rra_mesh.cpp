@@ -15,6 +15,7 @@
 #include "fem/core/input_error.hpp"
 #include "fem/core/json_reader.hpp"
 #include "fem/io/vtu_writer.hpp"
+#include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/rra_design.hpp"
 #include "fem/mesh/rra_mesher.hpp"
 #include "fem/mesh/structured_mesh.hpp"
@@ -484,5 +485,15 @@ TEST_CASE("write_vtu: well-formed ParaView file with the right counts", "[rra_me
   cube.part_names = {"block"};
   write_vtu((folder / "cube.vtu").string(), cube, cube.X, {}, {});
   CHECK(data_array(read_text(folder / "cube.vtu"), "types") == std::vector<double>{12.0});
+  // Quadratic elements: VTK_BIQUADRATIC_QUAD (28) and VTK_TRIQUADRATIC_HEXAHEDRON (29), all nodes written.
+  const Mesh q2 = to_quadratic(m);
+  write_vtu((folder / "q2.vtu").string(), q2, q2.X, {}, {});
+  const auto q2_types = data_array(read_text(folder / "q2.vtu"), "types");
+  CHECK(std::count(q2_types.begin(), q2_types.end(), 28.0) == q2.num_elements());
+  CHECK(data_array(read_text(folder / "q2.vtu"), "offsets").back() == 9.0 * q2.num_elements());
+  const Mesh hex27 = to_quadratic_3d(cube);
+  write_vtu((folder / "hex27.vtu").string(), hex27, hex27.X, {}, {});
+  CHECK(data_array(read_text(folder / "hex27.vtu"), "types") == std::vector<double>{29.0});
+  CHECK(data_array(read_text(folder / "hex27.vtu"), "connectivity").size() == 27);
   fs::remove_all(folder);
 }
