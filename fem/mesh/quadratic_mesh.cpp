@@ -116,10 +116,25 @@ Mesh promote(const Mesh& linear, const Topology& topology) {
 
 }  // namespace
 
-Mesh to_quadratic(const Mesh& linear) {
+Mesh to_quadratic(const Mesh& linear, const EdgeProjection& curved_edges) {
   if (linear.dim != 2 || linear.nodes_per_element != 4)
     throw std::logic_error("to_quadratic: needs a 2D mesh of 4-node quadrilaterals");
-  return promote(linear, kQuad);
+  Mesh q = promote(linear, kQuad);
+  if (!curved_edges) return q;
+  for (int e = 0; e < q.num_elements(); ++e) {
+    const int* n = q.element(e);
+    for (int a = 0; a < 4; ++a) {
+      const auto on_curve = curved_edges(q.X.row(n[a]).transpose(), q.X.row(n[(a + 1) % 4]).transpose());
+      if (on_curve) q.X.row(n[4 + a]) = on_curve->transpose();
+    }
+  }
+  for (int e = 0; e < q.num_elements(); ++e) {  // Gordon–Hall centre of the (possibly curved) element
+    const int* n = q.element(e);
+    Eigen::RowVector2d centre = Eigen::RowVector2d::Zero();
+    for (int a = 0; a < 4; ++a) centre += 0.5 * q.X.row(n[4 + a]) - 0.25 * q.X.row(n[a]);
+    q.X.row(n[8]) = centre;
+  }
+  return q;
 }
 
 Mesh to_quadratic_3d(const Mesh& linear) {

@@ -1,5 +1,7 @@
 #include "fem/mesh/rra_mesher.hpp"
 
+#include "fem/mesh/quadratic_mesh.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -10,6 +12,7 @@
 #include <vector>
 
 #include "fem/core/input_error.hpp"
+#include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"
 
 namespace softarm::fem {
@@ -490,6 +493,22 @@ RraMeshSizes rra_mesh_sizes(const RraDesign& d, int level, int wall_layers_at_le
   s.core_layers_bottom = layers(d.chamber_radius(d.end_cap_thickness_mm));
   s.core_layers_top = layers(d.chamber_radius(d.length_mm - d.end_cap_thickness_mm));
   return s;
+}
+
+Mesh mesh_rra_quadratic(const RraDesign& design, int level, int wall_layers_at_level_1) {
+  const double rho = design.ring_section_radius();
+  // An edge whose two ends lie on ring k's circle (ring boundary or groove) is an arc of it.
+  auto on_ring_circle = [&design, rho](const Eigen::Vector2d& a, const Eigen::Vector2d& b) -> std::optional<Eigen::Vector2d> {
+    if (design.ring_count == 0) return std::nullopt;
+    const Eigen::Vector2d mid = 0.5 * (a + b);
+    const int k = std::clamp(static_cast<int>(mid.y() / design.pitch()) + 1, 1, design.ring_count);
+    const Eigen::Vector2d centre(design.outer_radius(design.ring_centre_z(k)), design.ring_centre_z(k));
+    const double tolerance = 1e-9 * rho;
+    if (std::abs((a - centre).norm() - rho) > tolerance || std::abs((b - centre).norm() - rho) > tolerance)
+      return std::nullopt;
+    return Eigen::Vector2d(centre + rho * (mid - centre).normalized());
+  };
+  return to_quadratic(mesh_rra(design, level, wall_layers_at_level_1), on_ring_circle);
 }
 
 Mesh mesh_rra(const RraDesign& design, int level, int wall_layers_at_level_1) {

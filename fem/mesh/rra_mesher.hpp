@@ -57,4 +57,10 @@ RraMeshSizes rra_mesh_sizes(const RraDesign& design, int level, int wall_layers_
 /// designs whose blocks cannot be laid out (a chamber shorter than one groove segment).
 Mesh mesh_rra(const RraDesign& design, int level, int wall_layers_at_level_1 = 3);
 
+/// The same mesh promoted to 9-node quadrilaterals with the mid-edge nodes of
+/// ring and groove edges on the true circles (so the rings' area error falls
+/// from O(h²) to O(h⁴): 10 % → ~0.1 % at level 1). Default: 2 elements through
+/// the wall at level 1 (5 nodes, as many as a 3-layer Q1 mesh has minus one).
+Mesh mesh_rra_quadratic(const RraDesign& design, int level, int wall_layers_at_level_1 = 2);
+
 }  // namespace softarm::fem

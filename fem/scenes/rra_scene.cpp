@@ -4,7 +4,6 @@
 #include <memory>
 
 #include "fem/assembly/energy_problem.hpp"
-#include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/rra_mesher.hpp"
 
 namespace softarm::fem {
@@ -53,7 +52,7 @@ RraCurvePoint curve_point(const PressureState& s, const Mesh& mesh, const Elasti
 Mesh rra_mesh(const RraSceneSpec& spec) {
   validate(spec.design);
   // Q2 elements get 2 layers through the wall at level 1 (5 nodes), Q1 3 (4 nodes).
-  return spec.element_order == 2 ? to_quadratic(mesh_rra(spec.design, spec.mesh_level, 2))
+  return spec.element_order == 2 ? mesh_rra_quadratic(spec.design, spec.mesh_level, 2)
                                  : mesh_rra(spec.design, spec.mesh_level, 3);
 }
 
