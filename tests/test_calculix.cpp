@@ -8,7 +8,8 @@
 // below where ccx's follower pressure without load stiffness stalls. Level 2,
 // CAX8R against softarm's Q2/P1 on the same nodes: the two elements differ
 // (serendipity with reduced integration vs Lagrange with projected
-// dilatation), by 1.9 % at level 1 and 0.4 % at level 2 as both converge.
+// dilatation), by 1.9 % at level 1 and 0.4 % at level 2 as both converge
+// (chord-edge meshes; with the rings' curved edges: 7.636 vs 7.622 mm, 0.18 %).
 // A 1 % bound therefore tests the export (materials, loads, boundary
 // conditions, units) and both solvers, while any error in a material term, the
 // pressure load or a constraint moves the answer by more.
