@@ -9,7 +9,8 @@
 //  - the axisymmetric Q2 element is written as CAX8 (its centre node is
 //    dropped: CAX8 is the serendipity element of the same edges), Q1 as CAX4;
 //    by default with reduced integration (CAX8R/CAX4R): fully integrated CAX8
-//    locks on the near-incompressible silicone (thesis RRA, neo-Hookean, 20 kPa:
+//    locks on the near-incompressible silicone (thesis RRA, neo-Hookean, 20 kPa,
+//    chord-edge meshes:
 //    CAX8 7.22 mm, CAX8R 7.55 mm, softarm Q2/P1 7.69 mm at level 1; 7.49, 7.62,
 //    7.65 mm at level 2);
 //  - linear (St Venant–Kirchhoff) parts become *ELASTIC under NLGEOM, which is
