@@ -24,14 +24,16 @@ void write_vtu(const std::string& path, const fem::RraResult& r) {
   const auto& mesh = r.mesh;
   Eigen::MatrixXd x(mesh.num_nodes(), 2);
   for (int n = 0; n < mesh.num_nodes(); ++n) x.row(n) = r.final_positions.segment<2>(2 * n).transpose();
-  std::vector<double> stretch, stress, dilatation;
+  std::vector<double> stretch, min_stretch, stress, dilatation;
   for (const auto& e : r.final_element_results) {
     stretch.push_back(e.max_principal_stretch);
+    min_stretch.push_back(e.min_principal_stretch);
     stress.push_back(e.max_principal_cauchy_MPa);
     dilatation.push_back(e.dilatation);
   }
   fem::write_vtu(path, mesh, x, {},
                  {{"max_principal_stretch", 1, stretch},
+                  {"min_principal_stretch", 1, min_stretch},
                   {"max_principal_cauchy_stress_MPa", 1, stress},
                   {"element_dilatation_J", 1, dilatation}});
 }
@@ -75,8 +77,10 @@ nlohmann::json write_rra_summary(const SceneConfig& config, const fem::RraResult
       {"mass_kg", {{"tube", r.tube_mass_kg}, {"rings", r.ring_mass_kg}, {"total", r.tube_mass_kg + r.ring_mass_kg}}},
       {"curve", curve},
       {"solver", {{"load_steps", r.path.path.stats.steps}, {"newton_iterations", r.path.path.stats.newton_iterations},
-                  {"cutbacks", r.path.path.stats.cutbacks}, {"factorizations", r.path.factorizations}}},
+                  {"cutbacks", r.path.path.stats.cutbacks}, {"factorizations", r.path.factorizations},
+                  {"indefinite_tangents", r.path.lu_fallbacks}, {"energy_evaluations", r.timings.evaluations}}},
       {"time_s", {{"mesh", r.timings.mesh_s}, {"setup", r.timings.setup_s}, {"solve", r.timings.solve_s},
+                  {"assembly", r.timings.assembly_s},
                   {"factorize", r.path.factorize_s}, {"total", r.timings.total_s}}}};
   if (r.path.outcome == fem::PathOutcome::limit_point)
     summary["estimated_limit_pressure_kPa"] = r.path.estimated_limit_pressure_kPa;

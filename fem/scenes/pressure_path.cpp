@@ -63,6 +63,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const Chamber
   out.factorize_s = solver.factorize_seconds;
   out.solve_s = solver.solve_seconds;
   out.factorizations = solver.factorizations;
+  out.lu_fallbacks = solver.lu_fallbacks;
   out.reached_pressure_kPa = out.history.back().pressure_kPa;
   if (out.path.completed) {
     out.outcome = PathOutcome::completed;

@@ -45,7 +45,7 @@ struct PressurePathResult {
   std::vector<PressureState> history;  // every converged step
   // Linear-algebra cost of the whole path (for benchmarks).
   double analyse_s = 0.0, factorize_s = 0.0, solve_s = 0.0;
-  int factorizations = 0;
+  int factorizations = 0, lu_fallbacks = 0;  // LU: the tangent was indefinite
 };
 
 struct PressurePathSpec {

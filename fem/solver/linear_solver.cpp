@@ -42,7 +42,6 @@ LinearSolver::Status LinearSolver::factorize(const SparseMatrix& K) {
 
 Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) {
   const auto t0 = std::chrono::steady_clock::now();
-  ++solves;
   Eigen::VectorXd x = status_ == Status::positive_definite ? Eigen::VectorXd(cholesky_.solve(b))
                                                            : Eigen::VectorXd(lu_.solve(b));
   solve_seconds += seconds_since(t0);

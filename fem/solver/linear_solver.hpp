@@ -27,7 +27,7 @@ class LinearSolver {
 
   // Timings of the last call, seconds (for benchmarks).
   double analyse_seconds = 0.0, factorize_seconds = 0.0, solve_seconds = 0.0;
-  int factorizations = 0, solves = 0, lu_fallbacks = 0;
+  int factorizations = 0, lu_fallbacks = 0;
 
  private:
   Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> cholesky_;

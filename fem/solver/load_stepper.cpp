@@ -44,7 +44,6 @@ PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolve
       level = next_level;
       ++result.stats.steps;
       result.reached_level = level;
-      result.last_tangent_positive_definite = report.tangent_positive_definite;
       if (lands) ++next_output;
       if (callbacks.on_converged) callbacks.on_converged(level, x, lands, report);
       if (report.iterations <= settings.easy_iterations) increment = std::min(increment * settings.growth, settings.max_increment);

@@ -33,7 +33,6 @@ struct PathResult {
   double reached_level = 0.0;       // last converged λ
   Failure failure = Failure::none;  // last failure when not completed
   std::string message;
-  bool last_tangent_positive_definite = true;
   PathStatistics stats;
 };
 
