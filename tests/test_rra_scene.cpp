@@ -92,3 +92,20 @@ TEST_CASE("the Ogden tube that CalculiX stalls on near 56 kPa is carried on", "[
   CHECK(r.path.outcome == PathOutcome::completed);
   CHECK(r.path.reached_pressure_kPa == Approx(80.0));
 }
+
+TEST_CASE("a solver that gives up early reports a stall, not a burst", "[rra][limit]") {
+  // Newton limited to four iterations per step and little room to cut back: the path stops
+  // far below any limit point, and must say so.
+  auto spec = thesis_rra(1);
+  spec.path.newton.max_iterations = 4;
+  spec.path.steps.min_increment = 0.02;
+  const auto r = run_rra_scene(spec);
+  INFO(r.path.diagnosis);
+  CHECK(r.path.outcome == PathOutcome::stalled);
+  CHECK(r.path.reached_pressure_kPa > 0.0);  // it made progress before stalling (5.2 kPa)
+  CHECK(r.path.reached_pressure_kPa < 206.8);
+  CHECK(r.path.diagnosis.find("not a limit point") != std::string::npos);
+  REQUIRE_FALSE(r.curve.empty());
+  CHECK(r.curve.back().pressure_kPa == Approx(r.path.reached_pressure_kPa));  // the last state reached is reported
+  for (const auto& p : r.curve) CHECK(std::isfinite(p.extension_mm));
+}
