@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <iomanip>
 
+#include "fem/core/input_error.hpp"
 #include "fem/io/vtu_writer.hpp"
 
 namespace softarm::engine {
@@ -41,8 +42,12 @@ void write_vtu(const std::string& path, const fem::RraResult& r) {
 }  // namespace
 
 RraCurveWriter::RraCurveWriter(const std::string& directory, std::ostream& out) : out_(out) {
-  std::filesystem::create_directories(directory);
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
   csv_.open(directory + "/curve.csv");
+  if (error || !csv_)
+    throw fem::InputError("output.directory", "cannot write to '" + directory + "'" +
+                                                  (error ? ": " + error.message() : std::string()));
   csv_ << "pressure_kPa,extension_mm,chamber_volume_mm3,pv_stiffness_kPa_per_mm3,tube_max_principal_stretch,"
           "tube_max_principal_stress_MPa,ring_max_principal_stress_MPa,newton_iterations\n";
   out_ << "  pressure_kPa  extension_mm  volume_mm3  dp/dV_kPa/mm3  max_stretch  max_stress_MPa(tube/ring)\n";

@@ -79,7 +79,14 @@ TEST_CASE("softarm rejects bad scene input with the field named", "[cli]") {
   SECTION("missing required field") {
     expect_input_error(R"({"scene": "rra", "geometry": {}, "load": {}})", "geometry.");
   }
-  SECTION("missing file") {
+  SECTION("unwritable output directory") {
+    const auto file = write_config("good.json", rra_config(""));
+    const auto r = run_softarm("simulate " + file + " -o /proc/softarm_cannot_write_here");
+    INFO(r.output);
+    CHECK(r.exit_code == 2);
+    CHECK(r.output.find("output.directory") != std::string::npos);
+  }
+    SECTION("missing file") {
     const auto r = run_softarm("simulate /nonexistent/scene.json");
     CHECK(r.exit_code == 2);
     CHECK(r.output.find("/nonexistent/scene.json") != std::string::npos);
