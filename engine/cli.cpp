@@ -31,7 +31,11 @@ int export_deck(const std::string& file, const std::string& deck_path, double pr
   if (mesh_level_override > 0) config.rra.mesh_level = mesh_level_override;
   const double p = pressure_kPa > 0 ? pressure_kPa : config.rra.path.max_pressure_kPa;
   const fem::Mesh mesh = fem::rra_mesh(config.rra);
-  fem::write_abaqus_deck(deck_path, fem::rra_abaqus_deck(config.rra, mesh, p));
+  try {
+    fem::write_abaqus_deck(deck_path, fem::rra_abaqus_deck(config.rra, mesh, p));
+  } catch (const std::invalid_argument& e) {  // unwritable path, or a law with no Abaqus card
+    throw fem::InputError("--output", e.what());
+  }
   std::cout << "wrote " << deck_path << ": " << mesh.num_elements() << " elements, chamber pressure " << p
             << " kPa (run: ccx -i " << deck_path.substr(0, deck_path.rfind(".inp")) << ")\n";
   return 0;

@@ -74,7 +74,10 @@ void write_abaqus_deck(const std::string& path, const AbaqusDeck& deck) {
   const bool quadratic = mesh.nodes_per_element == 9;
   const int corners = 4, written_nodes = quadratic ? 8 : 4;  // CAX8 drops the centre node
 
-  if (const auto dir = std::filesystem::path(path).parent_path(); !dir.empty()) std::filesystem::create_directories(dir);
+  if (const auto dir = std::filesystem::path(path).parent_path(); !dir.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);  // a failure shows as the open below failing
+  }
   std::ofstream out(path);
   if (!out) throw std::invalid_argument("write_abaqus_deck: cannot write '" + path + "'");
   out.precision(12);
