@@ -16,7 +16,7 @@ fem::PressurePathSpec read_load(JsonReader load, JsonReader solver) {
   path.max_pressure_kPa = load.number("max_pressure_kPa", Range::positive(), "final chamber pressure, kPa");
   auto outputs = load.number_list("output_pressures_kPa", Range::positive(),
                                   "pressures at which the curve is reported (the solver lands on each exactly)");
-  const int count = load.integer("output_count", 20, Range::closed(1, 10000),
+  const int count = load.integer("output_count", 10, Range::closed(1, 10000),
                                  "number of evenly spaced output pressures when output_pressures_kPa is absent");
   if (outputs.empty())
     for (int i = 1; i <= count; ++i) outputs.push_back(path.max_pressure_kPa * i / count);

@@ -78,6 +78,10 @@ const nlohmann::json& JsonReader::at(const std::string& key, const std::string& 
 
 double JsonReader::number(const std::string& key, Range range, const std::string& doc) {
   declare(key, "number", "(required)", range.describe(), doc);
+  return read_number(key, range);
+}
+
+double JsonReader::read_number(const std::string& key, const Range& range) const {
   const auto& v = at(key, "number");
   if (!v.is_number()) throw InputError(field(key), "expected a number, got " + show(v));
   const double x = v.get<double>();
@@ -86,31 +90,23 @@ double JsonReader::number(const std::string& key, Range range, const std::string
 }
 
 double JsonReader::number(const std::string& key, double default_value, Range range, const std::string& doc) {
-  if (!has(key)) {
-    declare(key, "number", format_number(default_value), range.describe(), doc);
-    return default_value;
-  }
-  return number(key, range, doc);
+  declare(key, "number", format_number(default_value), range.describe(), doc);
+  return has(key) ? read_number(key, range) : default_value;
 }
 
 std::optional<double> JsonReader::optional_number(const std::string& key, Range range, const std::string& doc) {
-  if (!has(key)) {
-    declare(key, "number", "(none)", range.describe(), doc);
-    return std::nullopt;
-  }
-  return number(key, range, doc);
+  declare(key, "number", "(optional)", range.describe(), doc);
+  if (!has(key)) return std::nullopt;
+  return read_number(key, range);
 }
 
 int JsonReader::integer(const std::string& key, int default_value, Range range, const std::string& doc) {
-  if (!has(key)) {
-    declare(key, "integer", std::to_string(default_value), range.describe(), doc);
-    return default_value;
-  }
-  return *optional_integer(key, range, doc);
+  declare(key, "integer", std::to_string(default_value), range.describe(), doc);  // the documented default wins
+  return optional_integer(key, range, doc).value_or(default_value);
 }
 
 std::optional<int> JsonReader::optional_integer(const std::string& key, Range range, const std::string& doc) {
-  declare(key, "integer", "(none)", range.describe(), doc);
+  declare(key, "integer", "(optional)", range.describe(), doc);
   if (!has(key)) return std::nullopt;
   const auto& v = object_.at(key);
   if (!v.is_number_integer() && !(v.is_number() && std::floor(v.get<double>()) == v.get<double>()))
@@ -158,7 +154,7 @@ std::string JsonReader::choice(const std::string& key, const std::string& defaul
 }
 
 std::vector<double> JsonReader::number_list(const std::string& key, Range range, const std::string& doc) {
-  declare(key, "list of numbers", "(none)", range.describe(), doc);
+  declare(key, "list of numbers", "(optional)", range.describe(), doc);
   std::vector<double> out;
   if (!has(key)) return out;
   const auto& v = object_.at(key);

@@ -64,6 +64,7 @@ class JsonReader {
 
  private:
   const nlohmann::json& at(const std::string& key, const std::string& type) const;
+  double read_number(const std::string& key, const Range& range) const;  // validates, declares nothing
   void declare(const std::string& key, const std::string& type, const std::string& def, const std::string& range,
                const std::string& doc);
 
