@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "fem/forms/axisymmetric_elastic_form.hpp"
+#include "fem/forms/elastic_form.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
 #include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"
@@ -42,7 +42,7 @@ TEST_CASE("patch test: a distorted mesh reproduces a homogeneous finite deformat
       c.fix(2 * n + 1, b * mesh.X(n, 1));
     }
     EnergyProblem problem(flattened_positions(mesh), c);
-    problem.add_form(make_axisymmetric_elastic_form(
+    problem.add_form(make_elastic_form(
         mesh, std::vector<Material>{test::dragon_skin_30_ogden(1000.0)}, VolumetricTreatment::projected_dilatation));
     problem.finalize();
     Vector x = problem.reference_positions();
@@ -83,7 +83,7 @@ TEST_CASE("uniaxial tension of nearly incompressible Ogden matches the incompres
   for (int n : mesh.node_sets.at("axis")) c.fix(2 * n);
   for (int n : mesh.node_sets.at("bottom")) c.fix(2 * n + 1);
   for (int n : mesh.node_sets.at("top")) c.fix(2 * n + 1, (stretch - 1.0) * 2.0);
-  auto elastic = make_axisymmetric_elastic_form(mesh, std::vector<Material>{test::dragon_skin_30_ogden(kappa)},
+  auto elastic = make_elastic_form(mesh, std::vector<Material>{test::dragon_skin_30_ogden(kappa)},
                                                            VolumetricTreatment::projected_dilatation);
   EnergyProblem problem(flattened_positions(mesh), c);
   problem.add_form(elastic);
@@ -144,7 +144,7 @@ double fem_inner_radius(int order, int nr, double mu, double kappa, double A, do
   LoadState load;
   load.chamber_pressure_MPa = {0.0};
   EnergyProblem problem(flattened_positions(mesh), c);
-  problem.add_form(make_axisymmetric_elastic_form(mesh, std::vector<Material>{test::neo_hookean(mu, kappa)}));
+  problem.add_form(make_elastic_form(mesh, std::vector<Material>{test::neo_hookean(mu, kappa)}));
   problem.add_form(std::make_shared<ChamberPressureForm>(mesh, 0, load));
   problem.finalize();
   Vector x = problem.reference_positions();

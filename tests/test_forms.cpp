@@ -7,7 +7,7 @@
 // any wrong term (a missing geometric stiffness, a sign) shows as O(1).
 #include <catch2/catch.hpp>
 
-#include "fem/forms/axisymmetric_elastic_form.hpp"
+#include "fem/forms/elastic_form.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
 #include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"
@@ -36,7 +36,7 @@ std::unique_ptr<Patch> make_patch(const std::vector<Material>& materials, Volume
   for (int n : p->mesh.node_sets.at("bottom")) c.fix(2 * n + 1);
   p->problem = std::make_unique<EnergyProblem>(flattened_positions(p->mesh), c);
   std::vector<Material> parts(p->mesh.part_names.size(), materials.front());
-  p->problem->add_form(make_axisymmetric_elastic_form(p->mesh, parts, treatment));
+  p->problem->add_form(make_elastic_form(p->mesh, parts, treatment));
   if (pressure_MPa != 0.0) p->problem->add_form(std::make_shared<ChamberPressureForm>(p->mesh, 0, p->load));
   p->problem->finalize();
   return p;

@@ -4,9 +4,9 @@
 #include <catch2/catch.hpp>
 #include <stdexcept>
 
-#include "fem/forms/axisymmetric_elastic_form.hpp"
+#include "fem/forms/elastic_form.hpp"
 #include "fem/forms/gravity_form.hpp"
-#include "fem/forms/solid_elastic_form.hpp"
+#include "fem/forms/elastic_form.hpp"
 #include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/load_stepper.hpp"
@@ -41,8 +41,8 @@ std::unique_ptr<HangingBlock> hanging(Mesh mesh, const std::string& top) {
     }
   b->problem = std::make_unique<EnergyProblem>(flattened_positions(b->mesh), c);
   const std::vector<Material> parts{silicone};
-  b->problem->add_form(b->mesh.dim == 3 ? make_solid_elastic_form(b->mesh, parts)
-                                        : make_axisymmetric_elastic_form(b->mesh, parts));
+  b->problem->add_form(b->mesh.dim == 3 ? make_elastic_form(b->mesh, parts)
+                                        : make_elastic_form(b->mesh, parts));
   b->gravity = std::make_shared<GravityForm>(b->mesh, parts, Eigen::Vector3d(0, 0, -kStandardGravity), b->load);
   b->problem->add_form(b->gravity);
   b->problem->finalize();

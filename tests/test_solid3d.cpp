@@ -13,9 +13,9 @@
 #include <cmath>
 #include <map>
 
-#include "fem/forms/axisymmetric_elastic_form.hpp"
+#include "fem/forms/elastic_form.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
-#include "fem/forms/solid_elastic_form.hpp"
+#include "fem/forms/elastic_form.hpp"
 #include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/load_stepper.hpp"
@@ -69,7 +69,7 @@ TEST_CASE("3D elastic form: gradient and Hessian match finite differences", "[so
       // Two elements along each axis of 1 mm: every node couples across element faces.
       const Mesh mesh = order == 1 ? box({2, 2, 2}, 2, 2, 2, 1.0, 1) : box({2, 1, 1}, 2, 1, 1, 1.0, 2);
       EnergyProblem problem(flattened_positions(mesh), DirichletConstraints{});
-      problem.add_form(make_solid_elastic_form(mesh, {c.material}, c.treatment));
+      problem.add_form(make_elastic_form(mesh, {c.material}, c.treatment));
       problem.finalize();
       // A large, non-homogeneous deformation: ±0.2 mm on 1 mm elements (±0.1 mm for
       // Hex27, whose mid-edge nodes sit 0.5 mm from the corners).
@@ -117,7 +117,7 @@ TEST_CASE("3D patch test: a distorted box reproduces a non-symmetric homogeneous
       for (int i = 0; i < 3; ++i) c.fix(3 * n + i, u[i]);
     }
     EnergyProblem problem(flattened_positions(mesh), c);
-    problem.add_form(make_solid_elastic_form(mesh, {test::dragon_skin_30_ogden(1000.0)}));
+    problem.add_form(make_elastic_form(mesh, {test::dragon_skin_30_ogden(1000.0)}));
     problem.finalize();
     const Vector x = solve(problem, {1.0}, PathCallbacks{[](double) {}, {}});
     double max_error = 0.0;
@@ -143,7 +143,7 @@ TEST_CASE("3D uniaxial tension of nearly incompressible Ogden matches the incomp
     for (int n : mesh.node_sets.at("y0")) c.fix(3 * n + 1);
     for (int n : mesh.node_sets.at("z0")) c.fix(3 * n + 2);
     for (int n : mesh.node_sets.at("z1")) c.fix(3 * n + 2, (stretch - 1.0) * 2.0);
-    auto elastic = make_solid_elastic_form(mesh, {test::dragon_skin_30_ogden(kappa)});
+    auto elastic = make_elastic_form(mesh, {test::dragon_skin_30_ogden(kappa)});
     EnergyProblem problem(flattened_positions(mesh), c);
     problem.add_form(elastic);
     problem.finalize();
@@ -264,7 +264,7 @@ double bore_radius_3d(int nr, int nc, double A, double B, double L, const Materi
   }
   for (int n : lid_nodes)
     for (int i = 0; i < 3; ++i) c.fix(3 * n + i);
-  const Vector x = solve_pressurised(mesh, c, make_solid_elastic_form(mesh, {m}), p);
+  const Vector x = solve_pressurised(mesh, c, make_elastic_form(mesh, {m}), p);
   double r = 0.0;  // mean over the bore nodes (they agree to the circumferential discretisation)
   const auto& inner = mesh.node_sets.at("inner");
   for (int n : inner) r += x.segment<2>(3 * n).norm();
@@ -275,7 +275,7 @@ double bore_radius_axisymmetric(int nr, double A, double B, double L, const Mate
   const Mesh mesh = to_quadratic(rectangle_mesh(A, B, 0.0, L, nr, 1));
   DirichletConstraints c;
   for (int n = 0; n < mesh.num_nodes(); ++n) c.fix(2 * n + 1);
-  const Vector x = solve_pressurised(mesh, c, make_axisymmetric_elastic_form(mesh, {m}), p);
+  const Vector x = solve_pressurised(mesh, c, make_elastic_form(mesh, {m}), p);
   return x[2 * mesh.node_sets.at("inner").front()];
 }
 

@@ -3,7 +3,7 @@
 // of a path it cannot finish.
 #include <catch2/catch.hpp>
 
-#include "fem/forms/axisymmetric_elastic_form.hpp"
+#include "fem/forms/elastic_form.hpp"
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/load_stepper.hpp"
 #include "support/test_problems.hpp"
@@ -46,7 +46,7 @@ struct Compression {
     for (int n : mesh.node_sets.at("bottom")) c.fix(2 * n + 1);
     for (int n : mesh.node_sets.at("top")) c.fix(2 * n + 1, final_height - 1.0);
     problem = std::make_unique<EnergyProblem>(flattened_positions(mesh), c);
-    problem->add_form(make_axisymmetric_elastic_form(mesh, {test::neo_hookean(1.0, 50.0)}));
+    problem->add_form(make_elastic_form(mesh, {test::neo_hookean(1.0, 50.0)}));
     problem->finalize();
   }
 };

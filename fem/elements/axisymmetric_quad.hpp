@@ -13,7 +13,7 @@
 //
 // Each element also carries the space onto which the dilatation J is
 // projected for the near-incompressible treatment (see
-// axisymmetric_elastic_form.hpp): constants for Q1 (Q1/P0, mean dilatation)
+// elastic_form.hpp): constants for Q1 (Q1/P0, mean dilatation)
 // and discontinuous linears {1, R, Z} for Q2 (Q2/P1, inf-sup stable).
 //
 // Node order: corners counter-clockwise, then (Q2) mid-edge nodes of edges

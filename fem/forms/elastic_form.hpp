@@ -1,6 +1,6 @@
 #pragma once
-// The strain-energy form of a solid body, shared by the axisymmetric and the
-// 3D elements (both are instances of projected_dilatation_form.hpp).
+// The strain-energy form of a solid body, axisymmetric or 3D: every element
+// family is an instance of projected_dilatation_form.hpp.
 //
 // Near-incompressible laws (those with the isochoric/volumetric split) use a
 // projected-dilatation (three-field, Hu–Washizu) formulation with the
@@ -21,10 +21,13 @@
 //
 // The "pointwise" treatment integrates U(J) at every Gauss point; it locks
 // and exists only so the benchmark can show by how much.
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "fem/forms/form.hpp"
+#include "fem/materials/material.hpp"
+#include "fem/mesh/mesh.hpp"
 
 namespace softarm::fem {
 
@@ -47,5 +50,13 @@ class ElasticForm : public Form {
   /// Name of the element formulation in use (for reports).
   virtual std::string element_name() const = 0;
 };
+
+/// The elastic form of a mesh, its element chosen by dimension and nodes per element:
+/// axisymmetric Q1/P0 (2D, 4 nodes) or Q2/P1 (2D, 9), Hex8/P0 (3D, 8) or Hex27/P1 (3D, 27).
+/// `part_materials[i]` is the material of mesh part i. Throws std::logic_error for other
+/// meshes and for meshes with inverted elements.
+std::shared_ptr<ElasticForm> make_elastic_form(
+    const Mesh& mesh, std::vector<Material> part_materials,
+    VolumetricTreatment treatment = VolumetricTreatment::projected_dilatation);
 
 }  // namespace softarm::fem

@@ -1,7 +1,7 @@
 #pragma once
 // The strain energy of a solid body with the projected-dilatation treatment,
 // written once for every element family (axisymmetric quadrilaterals,
-// hexahedra). See axisymmetric_elastic_form.hpp for the formulation:
+// hexahedra). See elastic_form.hpp for the formulation:
 //     Π_e = ∫ W̄(C) dV + ∫ U(θ) dV,   θ = Π_h J (L² projection of J onto the element's dilatation space),
 // with the pointwise U(J) for laws without the volumetric split or on request.
 //
@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "fem/core/parallel.hpp"
-#include "fem/forms/axisymmetric_elastic_form.hpp"
+#include "fem/forms/elastic_form.hpp"
 #include "fem/materials/principal_stress.hpp"
 
 namespace softarm::fem {

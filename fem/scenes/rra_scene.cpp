@@ -83,7 +83,7 @@ RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress) {
   out.timings.mesh_s = since(t_start);
 
   const auto t_setup = Clock::now();
-  auto elastic = make_axisymmetric_elastic_form(mesh, rra_part_materials(mesh, spec), spec.treatment);
+  auto elastic = make_elastic_form(mesh, rra_part_materials(mesh, spec), spec.treatment);
   out.element_name = elastic->element_name();
   LoadState load;
   load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);

@@ -8,7 +8,7 @@
 #include <functional>
 #include <vector>
 
-#include "fem/forms/axisymmetric_elastic_form.hpp"
+#include "fem/forms/elastic_form.hpp"
 #include "fem/io/abaqus_writer.hpp"
 #include "fem/materials/material.hpp"
 #include "fem/mesh/mesh.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "fem/forms/axisymmetric_elastic_form.hpp"
+#include "fem/forms/elastic_form.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
 #include "test_problems.hpp"
 
