@@ -6,7 +6,6 @@
 
 #include "fem/forms/elastic_form.hpp"
 #include "fem/forms/gravity_form.hpp"
-#include "fem/forms/elastic_form.hpp"
 #include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/load_stepper.hpp"

@@ -15,7 +15,6 @@
 
 #include "fem/forms/elastic_form.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
-#include "fem/forms/elastic_form.hpp"
 #include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/load_stepper.hpp"
