@@ -1,0 +1,36 @@
+#pragma once
+// Hexahedral meshes of the 3D actuators: the three-chambered actuator (3CA) and
+// a lone RRA, by extruding their cross-section (actuator_section.hpp) through
+// layers (layered_extrusion.hpp): end caps, rings (equal-area squares,
+// tca_design.hpp) and the gaps between rings each get their own element
+// layers, so every material interface is a mesh surface.
+//
+// Levels refine uniformly: level L has 8L rays around each chamber, L elements
+// across each radial band (chamber, wall, inner and outer half of the ring band,
+// core) and L elements through each axial band (cap, ring, gap; bands longer than
+// 4 mm get more).
+#include "fem/mesh/mesh.hpp"
+#include "fem/mesh/rra_design.hpp"
+#include "fem/mesh/tca_design.hpp"
+
+namespace softarm::fem {
+
+struct SolidMeshOptions {
+  int level = 1;
+  int order = 2;                     // 1: Hex8, 2: Hex27
+  bool half = false;                 // keep y ≥ 0: a half model on the symmetry plane y = 0
+  double first_axis_angle_rad = 0;   // 3CA: angle of chamber 1's axis about the 3CA axis
+};
+
+/// A 3CA along z ∈ [0, l]: parts "tube", "rings", "sheath"; chambers 1–3, chamber k
+/// about the axis at first_axis_angle + (k − 1)·120°. Node sets "top" (z = l),
+/// "bottom" (z = 0), "symmetry" (y = 0, half models only). With `half`, the
+/// symmetry plane y = 0 is a mirror plane of the geometry only if chamber 1
+/// (or the midpoint between chambers 2 and 3) lies on it: first_axis_angle 0 or π.
+Mesh mesh_tca(const TcaDesign& design, const SolidMeshOptions& options);
+
+/// A lone RRA along z ∈ [0, l] in 3D: parts "tube", "rings"; chamber 1; node sets
+/// as mesh_tca. The 3D twin of the axisymmetric model with square rings.
+Mesh mesh_rra_3d(const RraDesign& design, const SolidMeshOptions& options);
+
+}  // namespace softarm::fem

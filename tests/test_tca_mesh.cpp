@@ -1,0 +1,96 @@
+// Meshes of the 3D actuators against exact volumes: the lone RRA's chamber (a
+// frustum) and rings (their volume is the thesis' tori, by construction of the
+// equal-area square), the 3CA's outline (convex envelope of three circles) and
+// its chambers, full and half models; every element has a positive Jacobian.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numeric>
+
+#include "fem/elements/reference_quadrature.hpp"
+#include "fem/forms/chamber_pressure_form.hpp"
+#include "fem/mesh/tca_mesher.hpp"
+
+using namespace softarm::fem;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+double chamber_volume(const Mesh& mesh, int chamber) {
+  const LoadState load;
+  const ChamberPressureForm form(mesh, chamber, load);
+  return form.volume(flattened_positions(mesh));
+}
+
+double frustum(double h, double r1, double r2) { return kPi * h / 3 * (r1 * r1 + r1 * r2 + r2 * r2); }
+
+/// Area of the convex envelope of three circles of radius R on a triangle of side d.
+double envelope_area(double R, double d) { return kPi * R * R + 3 * d * R + std::sqrt(3.0) / 4 * d * d; }
+}  // namespace
+
+TEST_CASE("3D RRA mesh: chamber frustum and ring tori have their exact volumes", "[tca_mesh]") {
+  RraDesign d;  // the thesis RRA
+  for (int order : {1, 2}) {
+    const Mesh mesh = mesh_rra_3d(d, {1, order, false, 0});
+    const auto volumes = part_volumes_mm3(mesh);
+    CAPTURE(order, mesh.num_nodes(), mesh.num_elements());
+    // Quadratic elements put every node on the circles (and stay within 2e-3 of
+    // them between nodes); linear ones are exact polygons inscribed in them: N = 8
+    // rays at level 1, area factor (N/2π)·sin(2π/N) for every circle.
+    const double polygon = order == 2 ? 1.0 : 8 / (2 * kPi) * std::sin(2 * kPi / 8);
+    const double tol = order == 2 ? 2e-3 : 1e-9;
+    CHECK(volumes[1] == Approx(polygon * ring_volume_mm3(d)).epsilon(tol));
+    REQUIRE(mesh.chambers.size() == 1);
+    // The cap interfaces may snap onto ring faces: measure the chamber's actual extent.
+    double z_lo = 1e9, z_hi = -1e9;
+    for (const auto& f : mesh.chambers[0].facets)
+      for (int n : f) z_lo = std::min(z_lo, mesh.X(n, 2)), z_hi = std::max(z_hi, mesh.X(n, 2));
+    CHECK(chamber_volume(mesh, 0) ==
+          Approx(polygon * frustum(z_hi - z_lo, d.chamber_radius(z_lo), d.chamber_radius(z_hi))).epsilon(tol));
+  }
+}
+
+TEST_CASE("3CA mesh: outline and chamber volumes, full and half models", "[tca_mesh]") {
+  TcaDesign d;
+  const RraDesign& a = d.actuator;
+  const Mesh full = mesh_tca(d, {1, 2, false, 0});
+  const auto volumes = part_volumes_mm3(full);
+  const double solid = std::accumulate(volumes.begin(), volumes.end(), 0.0);
+  double cavities = 0;
+  for (int c = 0; c < 3; ++c) cavities += chamber_volume(full, c);
+  // The outline area is quadratic in z: Simpson's rule is exact.
+  const auto area = [&](double z) {
+    return envelope_area(a.outer_radius(z) + d.sheath_thickness_mm, 2 * a.outer_radius(z) + d.actuator_spacing_mm);
+  };
+  const double l = a.length_mm;
+  const double outline = l / 6 * (area(0) + 4 * area(l / 2) + area(l));
+  CHECK(solid + cavities == Approx(outline).epsilon(1e-3));
+  CHECK(chamber_volume(full, 1) == Approx(chamber_volume(full, 0)).epsilon(1e-9));
+  CHECK(chamber_volume(full, 2) == Approx(chamber_volume(full, 0)).epsilon(1e-9));
+
+  const Mesh half = mesh_tca(d, {1, 2, true, 0});
+  CHECK(half.num_elements() * 2 == full.num_elements());
+  // Chamber 1 is cut by the symmetry plane: its open facets still give half its volume.
+  CHECK(chamber_volume(half, 0) == Approx(chamber_volume(full, 0) / 2).epsilon(1e-9));
+  CHECK(chamber_volume(half, 1) == Approx(chamber_volume(full, 1)).epsilon(1e-9));
+  CHECK(half.chambers[2].facets.empty());
+  REQUIRE(half.node_sets.count("symmetry"));
+  for (int n : half.node_sets.at("symmetry")) CHECK(std::abs(half.X(n, 1)) < 1e-9);
+}
+
+TEST_CASE("3CA mesh with a centre hole: solid, chambers and bore fill the outline", "[tca_mesh]") {
+  TcaDesign d;
+  d.centre_hole_diameter_mm = 4;
+  const RraDesign& a = d.actuator;
+  for (int level : {1, 2}) {
+    const Mesh mesh = mesh_tca(d, {level, 2, false, 0});
+    const auto v = part_volumes_mm3(mesh);
+    double total = std::accumulate(v.begin(), v.end(), 0.0) + kPi * 4 * a.length_mm;
+    for (int c = 0; c < 3; ++c) total += chamber_volume(mesh, c);
+    const auto area = [&](double z) {
+      return envelope_area(a.outer_radius(z) + d.sheath_thickness_mm, 2 * a.outer_radius(z) + d.actuator_spacing_mm);
+    };
+    const double l = a.length_mm;
+    CAPTURE(level);
+    CHECK(total == Approx(l / 6 * (area(0) + 4 * area(l / 2) + area(l))).epsilon(1e-3));
+  }
+}
