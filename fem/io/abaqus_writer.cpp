@@ -1,5 +1,8 @@
 #include "fem/io/abaqus_writer.hpp"
 
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -26,7 +29,7 @@ std::vector<double> volumetric_coefficients(const nlohmann::json& m, std::size_t
   return D;
 }
 
-void write_material(std::ostream& out, const std::string& name, const Material& material) {
+void write_material(std::ostream& out, const std::string& name, const Material& material, bool with_density) {
   const nlohmann::json m = material_to_json(material);
   const std::string law = m.at("law");
   out << "*MATERIAL, NAME=" << name << "\n";
@@ -57,7 +60,7 @@ void write_material(std::ostream& out, const std::string& name, const Material& 
   } else {
     throw std::invalid_argument("write_abaqus_deck: no Abaqus card for law '" + law + "'");
   }
-  out << "*DENSITY\n" << material.density_g_cm3 * 1e-9 << "\n";  // g/cm³ → t/mm³ (mm-N-s units)
+  if (with_density) out << "*DENSITY\n" << material.density_g_cm3 * 1e-9 << "\n";  // g/cm³ → t/mm³ (mm-N-s units)
 }
 
 void write_node_set(std::ostream& out, const std::string& name, const std::vector<int>& nodes) {
@@ -65,14 +68,98 @@ void write_node_set(std::ostream& out, const std::string& name, const std::vecto
   for (std::size_t i = 0; i < nodes.size(); ++i) out << nodes[i] + 1 << ((i + 1) % 8 == 0 || i + 1 == nodes.size() ? "\n" : ", ");
 }
 
+// Abaqus hexahedron faces S1..S6 as corner indices (0-based; VTK = Abaqus corner order).
+constexpr int kHexFaces[6][4] = {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1}, {1, 5, 6, 2}, {2, 6, 7, 3}, {3, 7, 4, 0}};
+
+// Chamber facets → "element, Pn" lines: (0-based element, 0-based face) per facet.
+std::vector<std::pair<int, int>> chamber_faces_3d(const Mesh& mesh, const Chamber& chamber) {
+  std::map<std::array<int, 4>, std::vector<std::pair<int, int>>> faces;  // sorted corners → (element, face)
+  for (int e = 0; e < mesh.num_elements(); ++e)
+    for (int f = 0; f < 6; ++f) {
+      std::array<int, 4> key;
+      for (int k = 0; k < 4; ++k) key[k] = mesh.element(e)[kHexFaces[f][k]];
+      std::sort(key.begin(), key.end());
+      faces[key].push_back({e, f});
+    }
+  auto point = [&](int n) -> Eigen::Vector3d { return mesh.X.row(n).transpose(); };
+  std::vector<std::pair<int, int>> result;
+  for (const auto& facet : chamber.facets) {
+    if (facet.size() != 4 && facet.size() != 9)
+      throw std::invalid_argument("write_abaqus_deck: a 3D chamber facet must have 4 or 9 nodes");
+    std::array<int, 4> key{facet[0], facet[1], facet[2], facet[3]};
+    std::sort(key.begin(), key.end());
+    const auto it = faces.find(key);
+    if (it == faces.end())
+      throw std::invalid_argument("write_abaqus_deck: chamber '" + chamber.name + "' has a facet that is no element face");
+    // The facet's normal (x_s × x_t ∝ diagonal 0→2 × diagonal 1→3) points out of the
+    // cavity, into the wall: the loaded element is the one on that side.
+    const Eigen::Vector3d normal = (point(facet[2]) - point(facet[0])).cross(point(facet[3]) - point(facet[1]));
+    const Eigen::Vector3d centre = 0.25 * (point(facet[0]) + point(facet[1]) + point(facet[2]) + point(facet[3]));
+    int chosen = -1;
+    for (std::size_t k = 0; k < it->second.size(); ++k) {
+      Eigen::Vector3d element_centre = Eigen::Vector3d::Zero();
+      for (int a = 0; a < 8; ++a) element_centre += point(mesh.element(it->second[k].first)[a]) / 8.0;
+      if (normal.dot(element_centre - centre) > 0.0) chosen = static_cast<int>(k);
+    }
+    if (chosen < 0)
+      throw std::invalid_argument("write_abaqus_deck: chamber '" + chamber.name +
+                                  "' has a facet whose normal points out of the wall (facets must point out of the cavity)");
+    result.push_back(it->second[static_cast<std::size_t>(chosen)]);
+  }
+  return result;
+}
+
 }  // namespace
 
 void write_abaqus_deck(const std::string& path, const AbaqusDeck& deck) {
   const Mesh& mesh = *deck.mesh;
-  if (mesh.dim != 2 || (mesh.nodes_per_element != 4 && mesh.nodes_per_element != 9))
-    throw std::invalid_argument("write_abaqus_deck: only axisymmetric Q1/Q2 meshes so far");
-  const bool quadratic = mesh.nodes_per_element == 9;
-  const int corners = 4, written_nodes = quadratic ? 8 : 4;  // CAX8 drops the centre node
+  const bool axisymmetric = mesh.dim == 2;
+  if (axisymmetric ? (mesh.nodes_per_element != 4 && mesh.nodes_per_element != 9)
+                   : (mesh.dim != 3 || (mesh.nodes_per_element != 8 && mesh.nodes_per_element != 27)))
+    throw std::invalid_argument("write_abaqus_deck: only axisymmetric Q1/Q2 and 3D Hex8/Hex27 meshes");
+  const bool quadratic = mesh.nodes_per_element == (axisymmetric ? 9 : 27);
+  // CAX8 drops the Q2 centre node, C3D20 the Hex27 face and body centres.
+  const int written_nodes = axisymmetric ? (quadratic ? 8 : 4) : (quadratic ? 20 : 8);
+  const std::string element_type =
+      axisymmetric ? std::string(quadratic ? "CAX8" : "CAX4") + (deck.reduced_integration ? "R" : "")
+                   : quadratic ? std::string("C3D20") + (deck.reduced_integration ? "R" : "")
+                               : std::string(deck.reduced_integration ? "C3D8R" : "C3D8I");
+  const auto& g = deck.gravity_m_s2;
+  const double g_norm = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  if (axisymmetric && g_norm != 0.0)
+    throw std::invalid_argument("write_abaqus_deck: gravity is exported for 3D meshes only");
+  if (!axisymmetric && !deck.axis_node_sets.empty())
+    throw std::invalid_argument("write_abaqus_deck: axis node sets are for axisymmetric meshes; use fixed_components");
+  for (const auto& [set, component] : deck.fixed_components)
+    if (component < 1 || component > mesh.dim)
+      throw std::invalid_argument("write_abaqus_deck: fixed component " + std::to_string(component) + " of node set '" +
+                                  set + "' is not in 1.." + std::to_string(mesh.dim));
+
+  // Chamber facets → (element, face), for the pressurised chambers.
+  auto pressure = [&](std::size_t c) { return c < deck.chamber_pressure_MPa.size() ? deck.chamber_pressure_MPa[c] : 0.0; };
+  std::vector<std::vector<std::pair<int, int>>> chamber_faces(mesh.chambers.size());
+  if (axisymmetric) {
+    // CAX faces 1..4 join corners (1,2), (2,3), (3,4), (4,1).
+    constexpr int corners = 4;
+    std::map<std::pair<int, int>, std::pair<int, int>> face_of;
+    for (int e = 0; e < mesh.num_elements(); ++e)
+      for (int f = 0; f < corners; ++f) {
+        const int a = mesh.element(e)[f], b = mesh.element(e)[(f + 1) % corners];
+        face_of[{std::min(a, b), std::max(a, b)}] = {e, f};
+      }
+    for (std::size_t c = 0; c < mesh.chambers.size(); ++c) {
+      if (pressure(c) == 0.0) continue;
+      for (const auto& facet : mesh.chambers[c].facets) {
+        const int a = facet.front(), b = facet.back();
+        const auto it = face_of.find({std::min(a, b), std::max(a, b)});
+        if (it == face_of.end()) throw std::invalid_argument("write_abaqus_deck: a chamber edge is not an element face");
+        chamber_faces[c].push_back(it->second);
+      }
+    }
+  } else {
+    for (std::size_t c = 0; c < mesh.chambers.size(); ++c)
+      if (pressure(c) != 0.0) chamber_faces[c] = chamber_faces_3d(mesh, mesh.chambers[c]);
+  }
 
   if (const auto dir = std::filesystem::path(path).parent_path(); !dir.empty()) {
     std::error_code error;
@@ -83,21 +170,25 @@ void write_abaqus_deck(const std::string& path, const AbaqusDeck& deck) {
   out.precision(12);
   out << "*HEADING\n" << deck.heading << "\n";
 
-  // Nodes used by the written elements (a Q2 centre node is not).
+  // Nodes used by the written elements (a Q2 centre node, Hex27 face and body centres are not).
   out << "*NODE, NSET=NALL\n";
   std::vector<char> used(mesh.num_nodes(), 0);
   for (int e = 0; e < mesh.num_elements(); ++e)
     for (int a = 0; a < written_nodes; ++a) used[mesh.element(e)[a]] = 1;
   for (int n = 0; n < mesh.num_nodes(); ++n)
-    if (used[n]) out << n + 1 << ", " << mesh.X(n, 0) << ", " << mesh.X(n, 1) << "\n";
+    if (used[n]) {
+      out << n + 1;
+      for (int i = 0; i < mesh.dim; ++i) out << ", " << mesh.X(n, i);
+      out << "\n";
+    }
 
   for (std::size_t p = 0; p < mesh.part_names.size(); ++p) {
-    out << "*ELEMENT, TYPE=" << (quadratic ? "CAX8" : "CAX4") << (deck.reduced_integration ? "R" : "")
-        << ", ELSET=E_" << mesh.part_names[p] << "\n";
+    out << "*ELEMENT, TYPE=" << element_type << ", ELSET=E_" << mesh.part_names[p] << "\n";
     for (int e = 0; e < mesh.num_elements(); ++e) {
       if (mesh.part[e] != static_cast<int>(p)) continue;
       out << e + 1;
-      for (int a = 0; a < written_nodes; ++a) out << ", " << mesh.element(e)[a] + 1;
+      // Abaqus data lines hold at most 16 entries: a C3D20 line continues after 15 nodes.
+      for (int a = 0; a < written_nodes; ++a) out << (a == 15 ? ",\n" : ", ") << mesh.element(e)[a] + 1;
       out << "\n";
     }
   }
@@ -108,32 +199,24 @@ void write_abaqus_deck(const std::string& path, const AbaqusDeck& deck) {
     if (!written.empty()) write_node_set(out, name, written);
   }
   for (std::size_t p = 0; p < mesh.part_names.size(); ++p) {
-    write_material(out, "M_" + mesh.part_names[p], deck.part_materials.at(p));
+    write_material(out, "M_" + mesh.part_names[p], deck.part_materials.at(p), g_norm != 0.0);
     out << "*SOLID SECTION, ELSET=E_" << mesh.part_names[p] << ", MATERIAL=M_" << mesh.part_names[p] << "\n";
   }
   out << "*BOUNDARY\n";
-  for (const auto& s : deck.clamped_node_sets) out << s << ", 1, 2\n";
+  for (const auto& s : deck.clamped_node_sets) out << s << ", 1, " << mesh.dim << "\n";
   for (const auto& s : deck.axis_node_sets) out << s << ", 1, 1\n";
+  for (const auto& [set, component] : deck.fixed_components) out << set << ", " << component << ", " << component << "\n";
 
-  // Chamber edges → (element, face): CAX faces 1..4 join corners (1,2), (2,3), (3,4), (4,1).
-  std::map<std::pair<int, int>, std::pair<int, int>> face_of;
-  for (int e = 0; e < mesh.num_elements(); ++e)
-    for (int f = 0; f < corners; ++f) {
-      const int a = mesh.element(e)[f], b = mesh.element(e)[(f + 1) % corners];
-      face_of[{std::min(a, b), std::max(a, b)}] = {e, f};
-    }
   out << "*STEP, NLGEOM, INC=10000\n*STATIC\n"
       << deck.initial_increment << ", 1.0, " << deck.min_increment << ", " << deck.max_increment << "\n*DLOAD\n";
   for (std::size_t c = 0; c < mesh.chambers.size(); ++c) {
-    const double p = c < deck.chamber_pressure_MPa.size() ? deck.chamber_pressure_MPa[c] : 0.0;
-    if (p == 0.0) continue;
-    for (const auto& facet : mesh.chambers[c].facets) {
-      const int a = facet.front(), b = facet.back();
-      const auto it = face_of.find({std::min(a, b), std::max(a, b)});
-      if (it == face_of.end()) throw std::invalid_argument("write_abaqus_deck: a chamber edge is not an element face");
-      out << it->second.first + 1 << ", P" << it->second.second + 1 << ", " << p << "\n";
-    }
+    for (const auto& [e, f] : chamber_faces[c]) out << e + 1 << ", P" << f + 1 << ", " << pressure(c) << "\n";
   }
+  if (g_norm != 0.0)  // magnitude in mm/s², then the unit direction
+    for (std::size_t p = 0; p < mesh.part_names.size(); ++p)
+      if (std::count(mesh.part.begin(), mesh.part.end(), static_cast<int>(p)) > 0)
+        out << "E_" << mesh.part_names[p] << ", GRAV, " << 1000.0 * g_norm << ", " << g[0] / g_norm << ", "
+            << g[1] / g_norm << ", " << g[2] / g_norm << "\n";
   for (const auto& s : deck.printed_node_sets) out << "*NODE PRINT, NSET=" << s << "\nU\n";
   out << "*END STEP\n";
   if (!out) throw std::runtime_error("write_abaqus_deck: write failed for '" + path + "'");
