@@ -2,6 +2,8 @@
 // and the VTU writer (spec §1: geometry "our definition").
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -526,3 +528,180 @@ TEST_CASE("RRA Q2 mesh: mid-edge nodes on the ring circles make the ring volume 
   CHECK(errors[0] / errors[1] > 8.0);  // ≥ third order (O(h⁴) expected: ratio 16)
 }
 
+
+// ---- Square ring section (RraDesign::RingSection::square): the equal-area
+// square of side a = d_r·√π/2 centred on the outer surface, half sunk in a
+// rectangular groove. Its geometry is polygonal, so the mesh is exact.
+namespace {
+
+RraDesign squared(RraDesign d) {
+  d.ring_section = RraDesign::RingSection::square;
+  return d;
+}
+
+/// Ring k (1-based) whose band |z − z_k| ≤ a/2 holds z, or 0.
+int square_ring_at(const RraDesign& d, double z) {
+  const int k = std::clamp(static_cast<int>(z / d.pitch()) + 1, 1, d.ring_count);
+  return std::abs(z - d.ring_centre_z(k)) <= d.ring_square_side_mm() / 2 * (1 + 1e-12) ? k : 0;
+}
+
+/// 2π ∫ r dA of one part of a 9-node mesh (3×3 Gauss on the element's own map).
+double q2_part_volume(const Mesh& m, int part) {
+  double v = 0.0;
+  for (int e = 0; e < m.num_elements(); ++e) {
+    if (m.part[e] != part) continue;
+    axisym::NodalCoordinates<axisym::Quad9> X;
+    for (int a = 0; a < 9; ++a) X.row(a) = m.X.row(m.element(e)[a]);
+    std::array<axisym::ReferencePoint<axisym::Quad9>, 9> points;
+    REQUIRE(axisym::reference_points<axisym::Quad9>(X, points));  // false: a non-positive Jacobian
+    for (const auto& p : points) v += p.dV;
+  }
+  return v;
+}
+
+}  // namespace
+
+TEST_CASE("RRA design: ring_section reads, round-trips and validates square rings", "[rra_mesh]") {
+  CHECK(read_geometry(thesis_geometry_json()).ring_section == RraDesign::RingSection::circle);  // the default
+  auto j = thesis_geometry_json();
+  j["ring_section"] = "square";
+  const RraDesign d = read_geometry(j);
+  CHECK(d.ring_section == RraDesign::RingSection::square);
+  CHECK(d.ring_square_side_mm() == Approx(d.ring_diameter_mm * std::sqrt(pi) / 2).epsilon(1e-15));
+  CHECK(d.ring_square_side_mm() * d.ring_square_side_mm() == Approx(pi * std::pow(d.ring_section_radius(), 2)));
+  const auto out = to_json(d);
+  CHECK(out["physical"]["ring_section"] == "square");
+  CHECK(to_json(thesis_rra())["physical"]["ring_section"] == "circle");
+  CHECK(out["derived"]["ring_square_side_mm"].get<double>() == Approx(1.8906).epsilon(1e-4));
+  CHECK(read_geometry(out["physical"]).ring_section == RraDesign::RingSection::square);
+
+  auto with = [&](const std::string& key, const nlohmann::json& value) {
+    auto g = j;
+    g[key] = value;
+    return g;
+  };
+  CHECK_THAT(input_error(with("ring_section", "hexagon")), Catch::Contains("geometry.ring_section"));
+  // a = 0.886 d_r: a square fits where the circle does not (d_r/pitch = 1.1), up to a < pitch.
+  CHECK(input_error(with("ring_thickness_normalised", 1.1)) == "");
+  CHECK_THAT(input_error(with("ring_thickness_normalised", 1.2)),
+             Catch::Contains("geometry.ring_thickness_normalised") && Catch::Contains("square") &&
+                 Catch::Contains("pitch"));
+  // Groove depth a/2 against the wall t_w = 4.194 mm: 10 rings (pitch 16 mm), d_r = 8.8 mm
+  // (a/2 = 3.90 mm) fits, d_r = 9.6 mm (a/2 = 4.25 mm) does not.
+  auto deep = with("ring_count", 10);
+  deep.erase("ring_count_normalised");
+  deep["ring_thickness_normalised"] = 0.55;
+  CHECK(input_error(deep) == "");
+  deep["ring_thickness_normalised"] = 0.6;
+  CHECK_THAT(input_error(deep), Catch::Contains("geometry.ring_thickness_normalised") && Catch::Contains("groove"));
+  RraDesign bad = squared(thesis_rra());
+  bad.ring_count = 10;  // pitch 16 mm
+  bad.ring_diameter_mm = 2 * bad.wall_thickness_mm / (std::sqrt(pi) / 2);  // a/2 = t_w exactly
+  CHECK_THROWS_WITH(validate(bad), Catch::Contains("geometry.ring_diameter_mm") && Catch::Contains("wall thickness"));
+
+  // Equal areas, same centroid radius R_k: the same ring volume as the circle.
+  CHECK(ring_volume_mm3(d) == Approx(ring_volume_mm3(thesis_rra())).epsilon(1e-12));
+}
+
+TEST_CASE("RRA mesh, square rings: positive Jacobians, exact volumes, bonded rings, node sets", "[rra_mesh]") {
+  auto designs = test_designs();
+  designs.emplace_back("deep groove", deep_groove_rra());
+  designs.emplace_back("rings 1.1 (square fits)", [] {
+    RraDesign d = thesis_rra();
+    d.ring_diameter_mm = 1.1 * d.pitch();
+    return d;
+  }());
+  for (auto [name, design] : designs) {
+    design = squared(design);
+    for (int level = 1; level <= 3; ++level) {
+      INFO(name << ", square rings, level " << level);
+      const Mesh m = mesh_rra(design, level);
+      REQUIRE(m.part_names == std::vector<std::string>{"tube", "rings"});
+      CHECK(min_jacobian(m) > 0);
+      CHECK(connected_pieces(m) == 1);
+      // Every edge is straight and every block a parallelogram: the volumes of
+      // revolution are exact at every level.
+      CHECK(part_volume(m, 0) == Approx(tube_volume_mm3(design)).epsilon(1e-11));
+      CHECK(part_volume(m, 1) == Approx(ring_volume_mm3(design)).margin(1e-9));
+      const double t_c = design.end_cap_thickness_mm;
+      const double exact = frustum(design.length_mm - 2 * t_c, design.chamber_radius(t_c),
+                                   design.chamber_radius(design.length_mm - t_c));
+      CHECK(chain_volume(m, m.chambers[0]) == Approx(exact).epsilon(1e-12));
+
+      // Bond: the shared nodes are exactly those on the groove (its bottom r_o − a/2
+      // and its two faces z_k ± a/2), at least segments + 1 + 2·groove_layers per ring.
+      const auto sizes = rra_mesh_sizes(design, level);
+      const auto tube = part_nodes(m, 0), rings = part_nodes(m, 1);
+      std::vector<int> shared;
+      std::set_intersection(tube.begin(), tube.end(), rings.begin(), rings.end(), std::back_inserter(shared));
+      const std::size_t per_ring = static_cast<std::size_t>(sizes.groove_segments + 1 + 2 * sizes.groove_layers);
+      CHECK(shared.size() >= design.ring_count * per_ring);
+      CHECK(shared.size() <= design.ring_count * per_ring + 2);  // + a cap face's column inside a groove
+      const double a = design.ring_square_side_mm();
+      for (int n : shared) {
+        const double r = m.X(n, 0), z = m.X(n, 1);
+        const int k = square_ring_at(design, z);
+        REQUIRE(k > 0);
+        const bool on_face = std::abs(std::abs(z - design.ring_centre_z(k)) - a / 2) < 1e-12 * design.length_mm;
+        const bool on_bottom = std::abs(r - (design.outer_radius(z) - a / 2)) < 1e-12 * design.top_radius_mm;
+        CHECK((on_face || on_bottom));
+        CHECK(r <= design.outer_radius(z) * (1 + 1e-14));
+        CHECK(r >= (design.outer_radius(z) - a / 2) * (1 - 1e-14));
+      }
+      // Ring elements lie inside their squares.
+      for (int e = 0; e < m.num_elements(); ++e)
+        if (m.part[e] == 1)
+          for (int c = 0; c < 4; ++c) {
+            const double r = m.X(m.element(e)[c], 0), z = m.X(m.element(e)[c], 1);
+            REQUIRE(square_ring_at(design, z) > 0);
+            CHECK(std::abs(r - design.outer_radius(z)) <= a / 2 * (1 + 1e-12));
+          }
+
+      if (level == 2) {  // node sets as for circular rings
+        const auto& sets = m.node_sets;
+        CHECK(sets.at("bottom").size() == static_cast<std::size_t>(sizes.core_layers_bottom + sizes.wall_layers + 1));
+        CHECK(sets.at("top").size() == static_cast<std::size_t>(sizes.core_layers_top + sizes.wall_layers + 1));
+        for (int n : sets.at("axis")) CHECK(m.X(n, 0) == 0.0);
+        for (int n : sets.at("bottom")) CHECK(m.X(n, 1) == 0.0);
+        for (int n : sets.at("top")) CHECK(m.X(n, 1) == design.length_mm);
+        CHECK(sets.at("fixed_end") == sets.at("top"));
+        REQUIRE(sets.at("free_end_centre").size() == 1);
+        CHECK(m.X(sets.at("free_end_centre")[0], 0) == 0.0);
+        CHECK(m.X(sets.at("free_end_centre")[0], 1) == 0.0);
+      }
+    }
+  }
+}
+
+TEST_CASE("RRA mesh, square rings: cap faces anywhere along a pitch", "[rra_mesh]") {
+  for (const RraDesign& base : {squared(thesis_rra()), squared(deep_groove_rra())})
+    for (int step = 0; step < 48; ++step) {
+      RraDesign d = base;
+      d.end_cap_thickness_mm = 0.3 + d.pitch() * step / 48.0;
+      for (int level : {1, 2}) {
+        INFO("cap " << d.end_cap_thickness_mm << " mm, wall " << d.wall_thickness_mm << " mm, level " << level);
+        const Mesh m = mesh_rra(d, level);
+        CHECK(min_jacobian(m) > 0);
+        const double t_c = d.end_cap_thickness_mm;
+        const double exact = frustum(d.length_mm - 2 * t_c, d.chamber_radius(t_c), d.chamber_radius(d.length_mm - t_c));
+        CHECK(chain_volume(m, m.chambers[0]) == Approx(exact).epsilon(1e-12));
+        CHECK(part_volume(m, 0) == Approx(tube_volume_mm3(d)).epsilon(1e-11));
+      }
+    }
+}
+
+TEST_CASE("RRA Q2 mesh, square rings: valid 9-node elements and exact volumes", "[rra_mesh]") {
+  const RraDesign d = squared(thesis_rra());
+  for (int level : {1, 2}) {
+    INFO("level " << level);
+    const Mesh m = mesh_rra_quadratic(d, level);
+    CHECK(m.nodes_per_element == 9);
+    CHECK(m.part_names == std::vector<std::string>{"tube", "rings"});
+    CHECK(q2_part_volume(m, m.part_index("rings")) == Approx(ring_volume_mm3(d)).epsilon(1e-11));
+    CHECK(q2_part_volume(m, m.part_index("tube")) == Approx(tube_volume_mm3(d)).epsilon(1e-11));
+    REQUIRE(m.chambers.size() == 1);
+  }
+  RraDesign plain = thesis_rra();
+  plain.ring_count = 0;
+  CHECK(mesh_rra(squared(plain), 1).X == mesh_rra(plain, 1).X);  // no rings: the section does not matter
+}

@@ -109,3 +109,23 @@ TEST_CASE("a solver that gives up early reports a stall, not a burst", "[rra][li
   CHECK(r.curve.back().pressure_kPa == Approx(r.path.reached_pressure_kPa));  // the last state reached is reported
   for (const auto& p : r.curve) CHECK(std::isfinite(p.extension_mm));
 }
+
+TEST_CASE("thesis RRA with square rings of equal area extends at low pressure", "[rra]") {
+  auto spec = thesis_rra(1);
+  spec.design.ring_section = RraDesign::RingSection::square;
+  spec.path.max_pressure_kPa = 20.0;
+  spec.path.output_pressures_kPa = {10.0, 20.0};
+  const auto r = run_rra_scene(spec);
+  INFO(r.path.diagnosis);
+  REQUIRE(r.path.outcome == PathOutcome::completed);
+  REQUIRE(r.curve.size() == 3);
+  CHECK(r.curve.back().pressure_kPa == Approx(20.0).epsilon(1e-12));
+  CHECK(r.curve[1].extension_mm > 0.0);
+  CHECK(r.curve[2].extension_mm > r.curve[1].extension_mm);
+  CHECK(r.curve[2].chamber_volume_mm3 > r.curve[1].chamber_volume_mm3);
+  CHECK(r.curve.back().ring_max_principal_stress_MPa > r.curve.back().tube_max_principal_stress_MPa);
+  // Same section area at the same radius: the same ring mass as the circular rings.
+  auto circle = thesis_rra(1);
+  CHECK(r.ring_mass_kg == Approx(ring_volume_mm3(circle.design) * 1.17e-6).epsilon(1e-12));
+  CHECK(r.tube_mass_kg == Approx(tube_volume_mm3(spec.design) * 1.08e-6).epsilon(1e-12));
+}

@@ -16,6 +16,7 @@ struct FieldNames {
   std::string cap = "geometry.end_cap_thickness_mm";
   std::string ring_count = "geometry.ring_count";
   std::string ring_size = "geometry.ring_diameter_mm";
+  std::string ring_section = "geometry.ring_section";
 };
 
 std::string show(double x) {
@@ -57,6 +58,22 @@ void validate_design(const RraDesign& d, const FieldNames& f) {
   const double pitch = d.pitch(), d_r = d.ring_diameter_mm;
   if (!(d_r > 0) || !std::isfinite(d_r))
     throw InputError(f.ring_size, "ring diameter is " + show(d_r) + " mm; it must be > 0 when there are rings");
+  if (d.ring_section == RraDesign::RingSection::square) {
+    // Square section of the circle's area, side a = d_r·√π/2, half sunk in a
+    // rectangular groove whose bottom r_o(z) − a/2 runs parallel to the chamber wall.
+    const double a = d.ring_square_side_mm();
+    if (a >= pitch)
+      throw InputError(f.ring_size, "ring diameter " + with_normalised(d_r, d_r / pitch) + " gives a square ring (" +
+                                        f.ring_section + " = \"square\") of side a = d_r·√π/2 = " + show(a) +
+                                        " mm that does not fit: a must be less than the ring pitch l/n_r = " +
+                                        show(pitch) + " mm (at a = l/n_r neighbouring rings touch)");
+    if (a / 2 >= d.wall_thickness_mm)
+      throw InputError(f.ring_size, "ring diameter " + with_normalised(d_r, d_r / pitch) + " gives a square ring (" +
+                                        f.ring_section + " = \"square\") whose groove depth a/2 = " + show(a / 2) +
+                                        " mm must be less than the wall thickness " + show(d.wall_thickness_mm) +
+                                        " mm, or the groove cuts into the chamber");
+    return;
+  }
   // d_r = pitch means touching rings: no tube surface would be left between the
   // grooves (a cusp of zero thickness), which no mesh can represent.
   if (d_r >= pitch)
@@ -128,6 +145,13 @@ RraDesign read_rra_design(JsonReader& g) {
   d.fixed_end = g.choice("fixed_end", "top", {"top", "bottom"}, "which end is clamped") == "top"
                     ? RraDesign::FixedEnd::top
                     : RraDesign::FixedEnd::bottom;
+  d.ring_section = g.choice("ring_section", "circle", {"circle", "square"},
+                            "ring cross-section: \"circle\" (diameter d_r, semicircular groove) or \"square\" "
+                            "(the same area, side d_r·√π/2, centred on the outer surface, half sunk in a rectangular groove)") ==
+                           "square"
+                       ? RraDesign::RingSection::square
+                       : RraDesign::RingSection::circle;
+  f.ring_section = g.field("ring_section");
   g.finish();
   validate_design(d, f);
   return d;
@@ -146,6 +170,7 @@ nlohmann::json to_json(const RraDesign& d) {
       {"ring_count", d.ring_count},
       {"ring_reference_diameter_mm", d.ring_reference_diameter_mm},
       {"fixed_end", d.fixed_end == RraDesign::FixedEnd::top ? "top" : "bottom"},
+      {"ring_section", d.ring_section == RraDesign::RingSection::square ? "square" : "circle"},
   };
   if (d.ring_count > 0) physical["ring_diameter_mm"] = d.ring_diameter_mm;
   nlohmann::json normalised = {
@@ -161,6 +186,7 @@ nlohmann::json to_json(const RraDesign& d) {
       {"chamber_radius_at_bottom_cap_mm", d.chamber_radius(t_c)},
       {"chamber_radius_at_top_cap_mm", d.chamber_radius(l - t_c)},
   };
+  if (d.ring_section == RraDesign::RingSection::square) derived["ring_square_side_mm"] = d.ring_square_side_mm();
   return {{"physical", physical}, {"normalised", normalised}, {"derived", derived}};
 }
 
@@ -170,6 +196,16 @@ double frustum(double height, double r1, double r2) { return kPi * height * (r1 
 }  // namespace
 
 double tube_volume_mm3(const RraDesign& d) {
+  const double t_c = d.end_cap_thickness_mm;
+  const double chamber = frustum(d.length_mm - 2 * t_c, d.chamber_radius(t_c), d.chamber_radius(d.length_mm - t_c));
+  if (d.square_rings()) {
+    // The outer surface is the straight taper; groove k is the band
+    // r_o(z) − a/2 ≤ r ≤ r_o(z), |z − z_k| ≤ a/2: ∫ π (a r_o − a²/4) dz = π a² (R_k − a/4).
+    const double a = d.ring_square_side_mm();
+    double v = frustum(d.length_mm, d.bottom_radius_mm, d.top_radius_mm) - chamber;
+    for (int k = 1; k <= d.ring_count; ++k) v -= kPi * a * a * (d.outer_radius(d.ring_centre_z(k)) - a / 4);
+    return v;
+  }
   const double rho = d.ring_section_radius();
   double v = 0, z = 0, r = d.bottom_radius_mm;
   for (int k = 1; k <= d.ring_count; ++k) {
@@ -179,13 +215,17 @@ double tube_volume_mm3(const RraDesign& d) {
     r = R;
   }
   v += frustum(d.length_mm - z, r, d.top_radius_mm);
-  const double t_c = d.end_cap_thickness_mm;
-  return v - frustum(d.length_mm - 2 * t_c, d.chamber_radius(t_c), d.chamber_radius(d.length_mm - t_c));
+  return v - chamber;
 }
 
 double ring_volume_mm3(const RraDesign& d) {
   const double rho = d.ring_section_radius();
   double v = 0.0;
+  if (d.square_rings()) {  // ∫ π ((r_o + a/2)² − (r_o − a/2)²) dz over |z − z_k| ≤ a/2 = 2π a² R_k
+    const double a = d.ring_square_side_mm();
+    for (int k = 1; k <= d.ring_count; ++k) v += 2 * kPi * a * a * d.outer_radius(d.ring_centre_z(k));
+    return v;
+  }
   for (int k = 1; k <= d.ring_count; ++k) v += 2 * kPi * kPi * d.outer_radius(d.ring_centre_z(k)) * rho * rho;
   return v;
 }

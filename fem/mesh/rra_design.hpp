@@ -9,6 +9,9 @@
 //   (axial thickness t_c) are solid from the axis to the outer surface.
 //   n_r rings of circular section (diameter d_r) centred on the outer surface at
 //   z_k = (k − ½)·l/n_r, k = 1..n_r, seated half-depth in semicircular grooves.
+//   Or (ring_section = square) rings of the same section area: squares of side
+//   a = d_r·√π/2 occupying r_o(z) − a/2 ≤ r ≤ r_o(z) + a/2, |z − z_k| ≤ a/2 (the
+//   faces follow the taper), half sunk into grooves of depth a/2.
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
@@ -24,6 +27,8 @@ struct RraDesign {
   double ring_diameter_mm = 0.4 * 160.0 / 30;   // d_r, circular ring section
   double ring_reference_diameter_mm = 2;        // d_ref of eq 8; only used to report r̂
   enum class FixedEnd { top, bottom } fixed_end = FixedEnd::top;
+  /// Ring cross-section: circle of diameter d_r, or the square of equal area.
+  enum class RingSection { circle, square } ring_section = RingSection::circle;
 
   /// Outer radius of the plain tapered tube (grooves ignored).
   double outer_radius(double z) const { return bottom_radius_mm + (top_radius_mm - bottom_radius_mm) * z / length_mm; }
@@ -35,6 +40,9 @@ struct RraDesign {
   double ring_centre_z(int k) const { return (k - 0.5) * pitch(); }
   /// Radius ρ = d_r / 2 of the ring section (and of its groove).
   double ring_section_radius() const { return 0.5 * ring_diameter_mm; }
+  /// Side a = d_r·√π/2 of the square ring section of the same area as the circle.
+  double ring_square_side_mm() const { return ring_diameter_mm * 0.88622692545275801365; }  // √π/2
+  bool square_rings() const { return ring_section == RingSection::square && ring_count > 0; }
   /// Smaller of the two end radii: the wall must be thinner than this.
   double smallest_outer_radius() const { return std::min(bottom_radius_mm, top_radius_mm); }
 };
@@ -47,8 +55,9 @@ struct RraDesign {
 ///   ring_count            | ring_count_normalised         (n_r = round(l·r̂ / ring_reference_diameter_mm), eq 8)
 ///   ring_diameter_mm      | ring_thickness_normalised     (= d_r / (l / n_r); 1 = neighbouring rings touch)
 /// plus length_mm, bottom_radius_mm, top_radius_mm (defaults 160, 9, 12),
-/// ring_reference_diameter_mm (default 2) and fixed_end ("top" | "bottom",
-/// default "top"). With n_r = 0 the ring size may be omitted. The result is
+/// ring_reference_diameter_mm (default 2), fixed_end ("top" | "bottom",
+/// default "top") and ring_section ("circle" | "square", default "circle"; a
+/// square has the circle's area, side d_r·√π/2). With n_r = 0 the ring size may be omitted. The result is
 /// validated; errors name the key the user actually wrote.
 RraDesign read_rra_design(JsonReader& geometry);
 
@@ -56,7 +65,8 @@ RraDesign read_rra_design(JsonReader& geometry);
 /// when the design cannot be built: non-positive sizes, a wall that leaves no
 /// chamber, caps that leave no chamber, rings that touch or overlap (d_r ≥ l/n_r)
 /// or grooves as deep as the wall (d_r/2 ≥ t_w·cos θ, measured normal to a taper of
-/// angle θ). Any positive taper, including
+/// angle θ). Square rings instead: rings that touch (a ≥ l/n_r) or grooves as
+/// deep as the wall (a/2 ≥ t_w). Any positive taper, including
 /// a reverse one (r_t < r_b), is valid.
 void validate(const RraDesign& design);
 
@@ -64,9 +74,11 @@ void validate(const RraDesign& design);
 /// removed), mm³: frusta between grooves through both lips of ring k at R_k,
 /// a cylinder of radius R_k over each groove, minus the half-disc grooves
 /// (Pappus: area πρ²/2 times 2π times the centroid radius R_k − 4ρ/3π), minus
-/// the chamber frustum. The mass reports use this, not the mesh.
+/// the chamber frustum. Square rings: the tapered frustum minus the grooves
+/// Σ π a² (R_k − a/4) and the chamber. The mass reports use this, not the mesh.
 double tube_volume_mm3(const RraDesign& design);
-/// Exact volume of all rings, Σ 2π² R_k ρ² (tori), mm³.
+/// Exact volume of all rings, Σ 2π² R_k ρ² (tori; square rings Σ 2π a² R_k, the
+/// same), mm³.
 double ring_volume_mm3(const RraDesign& design);
 
 /// {"physical": {...}, "normalised": {...}, "derived": {...}}. "physical" alone is

@@ -117,6 +117,7 @@ class RraMesher {
  public:
   RraMesher(const RraDesign& d, int level, int wall_layers_at_level_1)
       : d_(d), sizes_(rra_mesh_sizes(d, level, wall_layers_at_level_1)), profile_(d) {
+    if (d.square_rings()) return;  // square rings: build_square_wall lays out its own blocks
     for (int k = 1; k <= d.ring_count; ++k) {
       const double z = d.ring_centre_z(k);
       grooves_.push_back({Point(d.outer_radius(z), z), d.ring_section_radius(), sizes_.groove_segments});
@@ -124,8 +125,12 @@ class RraMesher {
   }
 
   Mesh build() {
-    const std::vector<Transversal> keys = key_transversals();
-    build_wall(keys);
+    if (d_.square_rings()) {
+      build_square_wall();
+    } else {
+      const std::vector<Transversal> keys = key_transversals();
+      build_wall(keys);
+    }
     const auto bottom_core = build_core(0, bottom_cap_column_, sizes_.core_layers_bottom);
     const auto top_core = build_core(top_cap_column_, static_cast<int>(columns_.size()) - 1, sizes_.core_layers_top);
     for (std::size_t k = 0; k < grooves_.size(); ++k) build_ring(grooves_[k], arc_nodes_[k]);
@@ -330,6 +335,98 @@ class RraMesher {
       if (std::count(nodes.begin(), nodes.end(), -1) > 0) throw std::logic_error("mesh_rra: groove node missing");
   }
 
+  /// The wall and rings for square rings (RraDesign::RingSection::square). Every
+  /// column is a straight line at constant z from the chamber line to the groove
+  /// bottom's line r_o(z) − a/2 (n_in layers), on through the groove depth to the
+  /// outer surface r_o(z) (groove_layers) and, on a groove, through the ring's
+  /// protruding half to r_o(z) + a/2 (ring_layers). Columns stand at the tube
+  /// ends and at both faces of every groove, with uniform ones between: every
+  /// block is a parallelogram following the taper, so the mesh is exact. Between
+  /// the faces of a groove the outer two bands are ring ("rings"), elsewhere
+  /// tube; the ring shares the groove's nodes (bonded). A cap's inner face gets a
+  /// column of its own, or, when it falls within a quarter of an element of an
+  /// existing column, moves that column's chamber end onto it (a slight slant
+  /// under the groove-bottom line), so that no sliver element is made.
+  void build_square_wall() {
+    const double a = d_.ring_square_side_mm(), l = d_.length_mm;
+    struct Column {
+      double z_in, z_out;
+      int cap_face = 0;  // 1 bottom, 2 top
+    };
+    std::vector<double> faces{0.0};  // interval i between faces i and i + 1 is a groove for odd i
+    for (int k = 1; k <= d_.ring_count; ++k) {
+      faces.push_back(d_.ring_centre_z(k) - a / 2);
+      faces.push_back(d_.ring_centre_z(k) + a / 2);
+    }
+    faces.push_back(l);
+    std::vector<Column> cols;
+    std::vector<char> groove;  // groove[j]: the interval between columns j and j + 1 is a groove
+    for (std::size_t i = 0; i + 1 < faces.size(); ++i) {
+      const double z0 = faces[i], z1 = faces[i + 1];
+      const int n = i % 2 == 1 ? sizes_.groove_segments : refined(z1 - z0);
+      for (int j = 0; j < n; ++j) {
+        const double z = j == 0 ? z0 : z0 + (z1 - z0) * j / n;
+        cols.push_back({z, z});
+        groove.push_back(i % 2 == 1);
+      }
+    }
+    cols.push_back({l, l});
+
+    for (int face = 1; face <= 2; ++face) {
+      const double z_cap = face == 1 ? d_.end_cap_thickness_mm : l - d_.end_cap_thickness_mm;
+      std::size_t i = 0;  // the interval [cols[i], cols[i + 1]) holding the cap face (by its outer z)
+      while (i + 2 < cols.size() && cols[i + 1].z_out <= z_cap) ++i;
+      const double z0 = cols[i].z_out, z1 = cols[i + 1].z_out, quarter = 0.25 * (z1 - z0);
+      std::size_t snap = cols.size();
+      if (z_cap - z0 < quarter && i > 0) snap = i;
+      else if (z1 - z_cap < quarter && i + 2 < cols.size()) snap = i + 1;
+      if (snap < cols.size()) {
+        if (cols[snap].cap_face != 0)
+          throw InputError("geometry", "cannot lay out a mesh at level " + std::to_string(level()) +
+                                           ": both cap faces fall on the column at z = " + std::to_string(cols[snap].z_out) +
+                                           " mm (the chamber is too short)");
+        cols[snap].z_in = z_cap;
+        cols[snap].cap_face = face;
+      } else {
+        Column c{z_cap, z_cap};
+        c.cap_face = face;
+        cols.insert(cols.begin() + static_cast<std::ptrdiff_t>(i) + 1, c);
+        groove.insert(groove.begin() + static_cast<std::ptrdiff_t>(i) + 1, groove[i]);
+      }
+    }
+
+    const int n_g = sizes_.groove_layers, n_in = sizes_.wall_layers - n_g, n_r = sizes_.ring_layers;
+    const auto inner_nodes = static_cast<std::size_t>(n_in) + 1, tube_nodes = inner_nodes + static_cast<std::size_t>(n_g);
+    for (std::size_t j = 0; j < cols.size(); ++j) {
+      const Column& c = cols[j];
+      const bool ring = (j > 0 && groove[j - 1]) || (j < groove.size() && groove[j]);
+      const Point p0 = chamber_point(c.z_in), p2(d_.outer_radius(c.z_out), c.z_out);
+      const Point p1(p2.x() - a / 2, c.z_out), p3(p2.x() + a / 2, c.z_out);
+      std::vector<int> ids;
+      for (int i = 0; i <= n_in; ++i) ids.push_back(builder_.add_node(i == 0 ? p0 : i == n_in ? p1 : Point(p0 + (p1 - p0) * (double(i) / n_in))));
+      for (int i = 1; i <= n_g; ++i) ids.push_back(builder_.add_node(i == n_g ? p2 : Point(p1 + (p2 - p1) * (double(i) / n_g))));
+      if (ring)
+        for (int i = 1; i <= n_r; ++i) ids.push_back(builder_.add_node(i == n_r ? p3 : Point(p2 + (p3 - p2) * (double(i) / n_r))));
+      if (c.cap_face == 1) bottom_cap_column_ = static_cast<int>(j);
+      if (c.cap_face == 2) top_cap_column_ = static_cast<int>(j);
+      if (j > 0) {
+        const std::vector<int>& prev = columns_.back();
+        auto band = [](const std::vector<int>& column, std::size_t from, std::size_t to) {
+          return std::vector<int>(column.begin() + static_cast<std::ptrdiff_t>(from), column.begin() + static_cast<std::ptrdiff_t>(to));
+        };
+        if (groove[j - 1]) {
+          builder_.add_grid({band(prev, 0, inner_nodes), band(ids, 0, inner_nodes)}, tube_part);
+          builder_.add_grid({band(prev, inner_nodes - 1, prev.size()), band(ids, inner_nodes - 1, ids.size())}, ring_part);
+        } else {
+          builder_.add_grid({band(prev, 0, tube_nodes), band(ids, 0, tube_nodes)}, tube_part);
+        }
+      }
+      columns_.push_back(std::move(ids));
+    }
+    if (bottom_cap_column_ < 0 || top_cap_column_ < 0 || !(bottom_cap_column_ < top_cap_column_))
+      throw std::logic_error("mesh_rra: cap faces not on distinct columns");
+  }
+
   /// z of a block's nodes on the chamber line: uniform, except under a groove,
   /// where the columns turn towards the chamber line's normal as the groove
   /// deepens (weight sin²φ: 0 at the lips, 1 at the groove bottom), so that the
@@ -484,7 +581,13 @@ RraMeshSizes rra_mesh_sizes(const RraDesign& d, int level, int wall_layers_at_le
   s.refinement = f;
   s.element_size_mm = h1 / f;
   s.wall_layers = wall_layers_at_level_1 * f;
-  if (d.ring_count > 0) {
+  if (d.square_rings()) {
+    const double a = d.ring_square_side_mm();
+    s.groove_layers = layers(a / 2);
+    s.wall_layers = layers(d.wall_thickness_mm - a / 2) + s.groove_layers;
+    s.ring_layers = s.groove_layers;
+    s.groove_segments = std::max(2, static_cast<int>(std::lround(a / h1))) * f;
+  } else if (d.ring_count > 0) {
     const int quarter = std::max(2, static_cast<int>(std::ceil(pi * d.ring_section_radius() / (2 * h1) - 1e-9)));
     s.groove_segments = 2 * quarter * f;
     // Annulus layers about as thick as the circle's segments are long.
@@ -496,6 +599,7 @@ RraMeshSizes rra_mesh_sizes(const RraDesign& d, int level, int wall_layers_at_le
 }
 
 Mesh mesh_rra_quadratic(const RraDesign& design, int level, int wall_layers_at_level_1) {
+  if (design.square_rings()) return to_quadratic(mesh_rra(design, level, wall_layers_at_level_1));  // all edges straight
   const double rho = design.ring_section_radius();
   // An edge whose two ends lie on ring k's circle (ring boundary or groove) is an arc of it.
   auto on_ring_circle = [&design, rho](const Eigen::Vector2d& a, const Eigen::Vector2d& b) -> std::optional<Eigen::Vector2d> {

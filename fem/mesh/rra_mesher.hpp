@@ -23,6 +23,11 @@
 // structured block on the strip's inner line; each ring is an O-grid (a square
 // core and an annulus) whose inner half shares the groove nodes.
 //
+// Square rings (RraDesign::RingSection::square) are meshed differently: every
+// column is a straight line at constant z, bands follow the taper, and each
+// ring is a structured block whose inner half shares the rectangular groove's
+// nodes (build_square_wall); all edges are straight, so the mesh is exact.
+//
 // Checked (tests/test_rra_mesh.cpp, and a random search over 20,000 valid
 // designs with tapers up to 6°, levels 1–3): every element has a positive
 // Jacobian at its Gauss points. Tapers steeper than about 17° combined with
@@ -39,13 +44,18 @@ namespace softarm::fem {
 ///   each groove semicircle 2q segments with q = max(2, ceil(π ρ / (2 h1))), so a
 ///   ring has 4q around and a q × q core; the ring annulus
 ///   max(1, round(0.29 q)) layers; each cap core round(r_c / h1) ≥ 1 layers.
+/// Square rings instead: groove_layers = round((a/2) / h1) ≥ 1 through the groove
+///   depth, as many through the ring's protruding half (ring_layers), round((t_w − a/2) / h1) ≥ 1
+///   more under the groove (wall_layers counts both), max(2, round(a / h1)) groove_segments
+///   along each groove (and its ring).
 /// Level L multiplies every count by f = 2^(L − 1): element sizes halve per level.
 struct RraMeshSizes {
   int refinement = 1;             // f
   double element_size_mm = 0;     // h1 / f
   int wall_layers = 0;            // through the wall
   int groove_segments = 0;        // along each groove semicircle (0 without rings)
-  int ring_layers = 0;            // radial layers of the ring annulus
+  int ring_layers = 0;            // radial layers of the ring annulus (square: of the protruding half)
+  int groove_layers = 0;          // square rings: layers through the groove depth a/2 (part of wall_layers)
   int core_layers_bottom = 0;     // radial layers of the bottom cap's core
   int core_layers_top = 0;
 };
