@@ -54,21 +54,31 @@ void SparsePattern::finalize() {
 }
 
 HessianAccumulator::HessianAccumulator(const SparsePattern& pattern, int threads)
-    : pattern_(pattern), buffers_(std::max(1, threads), std::vector<double>(pattern.zero_matrix().nonZeros(), 0.0)) {}
+    : pattern_(pattern), result_(pattern.zero_matrix()), buffers_(std::max(1, threads) - 1) {
+  // Thread 0 writes into the result itself: one nnz-sized array and one summation pass
+  // fewer per Hessian than a private array per thread (3D Hex27: nnz ≈ 170 per dof).
+  values_.push_back(result_.valuePtr());
+  for (auto& buf : buffers_) {
+    buf.assign(static_cast<std::size_t>(result_.nonZeros()), 0.0);
+    values_.push_back(buf.data());
+  }
+}
 
 void HessianAccumulator::add_block(int thread, int block, const double* values) {
   const int n = pattern_.block_size(block);
   const int* pos = pattern_.positions(block);
-  double* buf = buffers_[thread].data();
+  double* buf = values_[thread];
   for (int k = 0; k < n * n; ++k) buf[pos[k]] += values[k];
 }
 
-void HessianAccumulator::finish(SparseMatrix& out) const {
-  out = pattern_.zero_matrix();
-  double* v = out.valuePtr();
-  const std::size_t nnz = static_cast<std::size_t>(out.nonZeros());
+void HessianAccumulator::finish(SparseMatrix& out) {
+  double* v = result_.valuePtr();
+  const std::size_t nnz = static_cast<std::size_t>(result_.nonZeros());
   for (const auto& buf : buffers_)
     for (std::size_t k = 0; k < nnz; ++k) v[k] += buf[k];
+  buffers_.clear();
+  values_.clear();
+  out = std::move(result_);
 }
 
 }  // namespace softarm::fem

@@ -7,6 +7,8 @@
 // positions in the compressed matrix, so scattering is a lookup, not a search.
 // Threads accumulate into private value arrays that are summed at the end,
 // so assembly needs no locks and is deterministic for a fixed thread count.
+// Thread 0 accumulates straight into the result matrix, so a serial assembly
+// allocates no value array beside it and needs no summation pass.
 #include <Eigen/SparseCore>
 #include <span>
 #include <vector>
@@ -44,12 +46,15 @@ class HessianAccumulator {
   explicit HessianAccumulator(const SparsePattern& pattern, int threads);
   /// Adds a dense n×n block (column-major, n = block size) for the declared block.
   void add_block(int thread, int block, const double* values);
-  /// Sums the thread buffers into a matrix with the pattern's structure.
-  void finish(SparseMatrix& out) const;
+  /// Sums the thread buffers into a matrix with the pattern's structure (once: the
+  /// accumulated matrix is moved into `out`).
+  void finish(SparseMatrix& out);
 
  private:
   const SparsePattern& pattern_;
-  std::vector<std::vector<double>> buffers_;
+  SparseMatrix result_;                       // thread 0's values
+  std::vector<std::vector<double>> buffers_;  // threads 1, 2, ...
+  std::vector<double*> values_;               // per thread: where its block values go
 };
 
 }  // namespace softarm::fem

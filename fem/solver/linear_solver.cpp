@@ -9,28 +9,81 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 }  // namespace
 
-LinearSolver::LinearSolver() {
-  cholesky_.setMode(Eigen::CholmodAuto);
-  cholesky_.cholmod().final_ll = 1;     // LLᵀ: fails (and says so) on an indefinite tangent
-  cholesky_.cholmod().print = 0;        // a failed Cholesky is an expected event, not a warning
-  cholesky_.cholmod().quick_return_if_not_posdef = 1;
+// The defaults (Options{}) are CHOLMOD's own choices, kept on measurement
+// (bench_linear_solver: Hex27/P1 box 60x30x160 mm, Dragon Skin 30 tangent at rest,
+// medians of 3 factorisations, same pattern as every Newton iteration):
+//  - automatic simplicial/supernodal: supernodal on Hex27 (61,347 dofs: simplicial
+//    42.6 s vs supernodal 3.0 s), simplicial on the 2D RRA scenes (right there: few flops
+//    per entry of L, no BLAS-3 work to win).
+//  - ordering: CHOLMOD's default tries AMD, finds its fill high on 3D meshes and takes
+//    METIS: nnz(L) 28.7 M, 22.0 GFlop vs AMD only 37.4 M, 42.6 GFlop, 5.3 s (1.8x slower).
+//    METIS only gives the same factor (the AMD trial costs < 0.5 s once per pattern and
+//    keeps AMD on 2D meshes); NESDIS 22.1 GFlop, same time; trying all 9 orderings
+//    saves 3.5 % of the flops for a 5.4 s analysis instead of 1.0 s: not worth it.
+//  - postorder on (off: 4.6 s vs 3.0 s). Relaxed amalgamation nrelax {8, 32, 96}:
+//    no gain (61k: 2.97 vs 3.17 s, 109k: 7.76 vs 7.13 s, serial OpenBLAS, 2 pinned cores).
+//  - lower triangle: passing the upper one saves 11 % of CHOLMOD's memory (396 vs 448 MiB
+//    at 61k dofs, 790 vs 885 MiB at 109k) but is 1.2-1.3x slower with threaded OpenBLAS
+//    (61k: 1.93 vs 1.58 s; 109k: 5.48 vs 4.29 s).
+// What matters is the BLAS behind libblas.so.3/liblapack.so.3 (scripts/setup.sh installs
+// libopenblas0-pthread): at 61k dofs reference BLAS 36.8 s, OpenBLAS serial 3.0 s (this
+// 2-core machine, loaded); on 2 pinned cores of an idle Xeon, serial vs pthread OpenBLAS:
+// 19,683 dofs 0.63 vs 0.29 s, 61,347 dofs 3.17 vs 1.58 s, 156,927 dofs 19.9 vs 11.9 s.
+LinearSolver::LinearSolver(const Options& options) : options_(options) {
+  configure(cholesky_);
+  configure(cholesky_upper_);
+}
+
+template <class Chol>
+void LinearSolver::configure(Chol& c) const {
+  using Mode = Options::Mode;
+  c.setMode(options_.mode == Mode::automatic    ? Eigen::CholmodAuto
+            : options_.mode == Mode::simplicial ? Eigen::CholmodSimplicialLLt
+                                                : Eigen::CholmodSupernodalLLt);
+  auto& cm = c.cholmod();
+  cm.final_ll = 1;     // LLᵀ: fails (and says so) on an indefinite tangent
+  cm.print = 0;        // a failed Cholesky is an expected event, not a warning
+  cm.quick_return_if_not_posdef = 1;
+  cm.postorder = options_.postorder ? 1 : 0;
+  cm.supernodal_switch = options_.supernodal_switch;
+  if (options_.large_supernodes) {
+    cm.nrelax[0] = 8, cm.nrelax[1] = 32, cm.nrelax[2] = 96;
+    cm.zrelax[0] = 0.8, cm.zrelax[1] = 0.2, cm.zrelax[2] = 0.1;
+  }
+  using Ordering = Options::Ordering;
+  switch (options_.ordering) {
+    case Ordering::cholmod_default: break;
+    case Ordering::amd: cm.nmethods = 1; cm.method[0].ordering = CHOLMOD_AMD; break;
+    case Ordering::metis: cm.nmethods = 1; cm.method[0].ordering = CHOLMOD_METIS; break;
+    case Ordering::nesdis: cm.nmethods = 1; cm.method[0].ordering = CHOLMOD_NESDIS; break;
+    case Ordering::best_of_all: cm.nmethods = 9; break;
+  }
+}
+
+template <class Chol>
+bool LinearSolver::cholesky_factorize(Chol& c, const SparseMatrix& K) {
+  if (!cholesky_analysed_) {
+    const auto t0 = std::chrono::steady_clock::now();
+    c.analyzePattern(K);
+    cholesky_analysed_ = true;
+    analyse_seconds += seconds_since(t0);
+    factor_flops = c.cholmod().fl;
+    factor_nonzeros = c.cholmod().lnz;
+    supernodal = c.factor() && c.factor()->is_super;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  c.factorize(K);
+  factorize_seconds += seconds_since(t0);
+  cholmod_peak_bytes = static_cast<double>(c.cholmod().memory_usage);
+  return c.info() == Eigen::Success;
 }
 
 LinearSolver::Status LinearSolver::factorize(const SparseMatrix& K) {
-  auto t0 = std::chrono::steady_clock::now();
-  if (!cholesky_analysed_) {
-    cholesky_.analyzePattern(K);
-    cholesky_analysed_ = true;
-    analyse_seconds += seconds_since(t0);
-    t0 = std::chrono::steady_clock::now();
-  }
   ++factorizations;
-  cholesky_.factorize(K);
-  if (cholesky_.info() == Eigen::Success) {
-    factorize_seconds += seconds_since(t0);
+  if (options_.upper ? cholesky_factorize(cholesky_upper_, K) : cholesky_factorize(cholesky_, K))
     return status_ = Status::positive_definite;
-  }
   ++lu_fallbacks;
+  const auto t0 = std::chrono::steady_clock::now();
   if (!lu_analysed_) {
     lu_.analyzePattern(K);
     lu_analysed_ = true;
@@ -42,8 +95,11 @@ LinearSolver::Status LinearSolver::factorize(const SparseMatrix& K) {
 
 Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) {
   const auto t0 = std::chrono::steady_clock::now();
-  Eigen::VectorXd x = status_ == Status::positive_definite ? Eigen::VectorXd(cholesky_.solve(b))
-                                                           : Eigen::VectorXd(lu_.solve(b));
+  Eigen::VectorXd x;
+  if (status_ == Status::positive_definite)
+    x = options_.upper ? Eigen::VectorXd(cholesky_upper_.solve(b)) : Eigen::VectorXd(cholesky_.solve(b));
+  else
+    x = lu_.solve(b);
   solve_seconds += seconds_since(t0);
   return x;
 }

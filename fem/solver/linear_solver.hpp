@@ -6,6 +6,9 @@
 // Newton iteration. When the tangent is not positive definite (past a limit
 // point, or far from equilibrium) the Cholesky fails and the solve falls back
 // to UMFPACK's LU, whose symbolic analysis is likewise kept.
+//
+// The defaults (Options{}) are the measured best for both the 2D axisymmetric
+// scenes and 3D Hex27 bodies; see linear_solver.cpp and bench_linear_solver.
 #include <Eigen/CholmodSupport>
 #include <Eigen/UmfPackSupport>
 #include <memory>
@@ -18,7 +21,22 @@ class LinearSolver {
  public:
   enum class Status { positive_definite, indefinite, singular };
 
-  LinearSolver();
+  /// Solver configuration (the alternatives exist for bench_linear_solver).
+  struct Options {
+    enum class Mode { automatic, simplicial, supernodal };
+    /// cholmod_default: CHOLMOD's own strategy (AMD, then METIS when AMD's fill is high);
+    /// amd, metis, nesdis: that ordering only; best_of_all: every ordering, keep the least fill.
+    enum class Ordering { cholmod_default, amd, metis, nesdis, best_of_all };
+    Mode mode = Mode::automatic;
+    Ordering ordering = Ordering::cholmod_default;
+    bool postorder = true;
+    bool upper = false;  // give CHOLMOD the upper (true) or lower (false) triangle
+    double supernodal_switch = 40.0;  // CHOLMOD's flops/nnz(L) threshold for automatic mode
+    bool large_supernodes = false;    // relaxed amalgamation nrelax {8, 32, 96}, zrelax {0.8, 0.2, 0.1}
+  };
+
+  LinearSolver() : LinearSolver(Options{}) {}
+  explicit LinearSolver(const Options& options);
   /// Factorises K (same pattern every call). Returns positive_definite when
   /// Cholesky succeeded, indefinite when LU was needed and succeeded, singular otherwise.
   Status factorize(const SparseMatrix& K);
@@ -28,9 +46,24 @@ class LinearSolver {
   // Timings of the last call, seconds (for benchmarks).
   double analyse_seconds = 0.0, factorize_seconds = 0.0, solve_seconds = 0.0;
   int factorizations = 0, lu_fallbacks = 0;
+  // After the analysis (benchmarks): predicted flops and nonzeros of L, whether
+  // CHOLMOD chose the supernodal factor, and CHOLMOD's peak memory in bytes.
+  double factor_flops = 0.0, factor_nonzeros = 0.0, cholmod_peak_bytes = 0.0;
+  bool supernodal = false;
 
  private:
-  Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> cholesky_;
+  template <class Chol>
+  void configure(Chol& c) const;
+  template <class Chol>
+  bool cholesky_factorize(Chol& c, const SparseMatrix& K);
+
+  template <int UpLo>
+  struct Cholesky : Eigen::CholmodDecomposition<SparseMatrix, UpLo> {
+    const cholmod_factor* factor() const { return this->m_cholmodFactor; }
+  };
+  Options options_;
+  Cholesky<Eigen::Lower> cholesky_;
+  Cholesky<Eigen::Upper> cholesky_upper_;
   Eigen::UmfPackLU<SparseMatrix> lu_;
   bool cholesky_analysed_ = false, lu_analysed_ = false;
   Status status_ = Status::singular;
