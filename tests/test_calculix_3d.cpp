@@ -32,6 +32,7 @@
 #include <regex>
 #include <set>
 #include <sstream>
+#include <unistd.h>
 
 #include "fem/forms/chamber_pressure_form.hpp"
 #include "fem/forms/elastic_form.hpp"
@@ -267,9 +268,11 @@ struct CcxRun {
   double seconds = 0.0;  // wall time of ccx
 };
 
-/// Writes the deck and runs ccx (2 threads) on it in a fresh temporary directory.
+/// Writes the deck and runs ccx (2 threads) on it in a fresh temporary directory, named
+/// with the process id so that test runs from several build directories do not collide.
 CcxRun run_ccx(const AbaqusDeck& deck, const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("softarm_calculix_3d_" + name);
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("softarm_calculix_3d_" + std::to_string(getpid()) + "_" + name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   write_abaqus_deck((dir / (name + ".inp")).string(), deck);
@@ -281,6 +284,7 @@ CcxRun run_ccx(const AbaqusDeck& deck, const std::string& name) {
   INFO("ccx log: " << (dir / "ccx.log").string());
   REQUIRE(status == 0);
   run.u = last_displacement((dir / (name + ".dat")).string());
+  std::filesystem::remove_all(dir);
   return run;
 }
 
@@ -302,7 +306,8 @@ TEST_CASE("Abaqus export of a 3D mesh: element types, chamber faces, symmetry pl
   REQUIRE(mesh.nodes_per_element == 27);
   REQUIRE(mesh.num_elements() == 56);           // 4³ − 2³
   REQUIRE(mesh.chambers[0].facets.size() == 24);  // 6 faces × 2 × 2 facets
-  const auto path = (std::filesystem::temp_directory_path() / "softarm_abaqus_3d_unit.inp").string();
+  const auto path =
+      (std::filesystem::temp_directory_path() / ("softarm_abaqus_3d_unit_" + std::to_string(getpid()) + ".inp")).string();
   Load load;
   load.pressure_MPa = 0.01;
   AbaqusDeck cavity_deck = deck_for(mesh, load);
@@ -332,7 +337,9 @@ TEST_CASE("Abaqus export of a 3D mesh: element types, chamber faces, symmetry pl
     if (section == element) {
       int v;
       while (fields >> v) pending.push_back(v);
-      if (line.back() != ' ') {  // a line not ending in a comma completes the element
+      if (line.back() == ' ') {  // a line ending in a comma continues: the number and 15 nodes
+        CHECK(pending.size() == 16);
+      } else {  // the line completes the element
         elements[pending[0]] = std::vector<int>(pending.begin() + 1, pending.end());
         pending.clear();
       }
@@ -409,6 +416,7 @@ TEST_CASE("Abaqus export of a 3D mesh: element types, chamber faces, symmetry pl
   no_face.chambers = {Chamber{1, "diagonal", {{e0[0], e0[1], e0[6], e0[7]}}}};  // a diagonal plane of element 0
   deck.mesh = &no_face;
   CHECK_THROWS_AS(write_abaqus_deck(path, deck), std::invalid_argument);
+  std::filesystem::remove(path);
 }
 
 TEST_CASE("CalculiX agrees with softarm on a pressurised plane-strain tube (quarter model)", "[calculix]") {
