@@ -36,6 +36,8 @@ class ChamberPressureForm : public Form {
   void declare_pattern(SparsePattern& pattern) override;
   FormStatus add(const Vector& x, double* value, Vector* gradient, HessianAccumulator* hessian) const override;
 
+  /// Index of the chamber in mesh.chambers (and in LoadState::chamber_pressure_MPa).
+  int chamber() const { return chamber_; }
   /// Chamber volume at positions x, mm³.
   double volume(const Vector& x) const;
   /// ∂V/∂x (full dof vector).

@@ -2,15 +2,33 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace softarm::fem {
 namespace {
 constexpr double kMPaPerKPa = 1e-3;
 
+/// The loaded chambers with their pressure fractions: V = Σ f_i V_i is the
+/// volume conjugate to the load level (the load's work is λ p_max dV).
+struct LoadedVolume {
+  std::vector<const ChamberPressureForm*> chambers;
+  std::vector<double> fractions;
+  double volume(const Vector& x) const {
+    double v = 0;
+    for (std::size_t i = 0; i < chambers.size(); ++i) v += fractions[i] * chambers[i]->volume(x);
+    return v;
+  }
+  Vector gradient(const Vector& x) const {
+    Vector g = Vector::Zero(x.size());
+    for (std::size_t i = 0; i < chambers.size(); ++i) g += fractions[i] * chambers[i]->volume_gradient(x);
+    return g;
+  }
+};
+
 // dp/dV = 1/(∇Vᵀ K⁻¹ ∇V), using the solver's last factorisation of the tangent.
-double pv_stiffness(const EnergyProblem& problem, const ChamberPressureForm& chamber, LinearSolver& solver,
+double pv_stiffness(const EnergyProblem& problem, const LoadedVolume& chamber, LinearSolver& solver,
                     const Vector& x) {
-  Vector g = chamber.volume_gradient(x);
+  Vector g = chamber.gradient(x);
   problem.zero_prescribed(g);
   const double compliance_mm3_per_MPa = g.dot(solver.solve(g));
   return 1e3 / compliance_mm3_per_MPa;  // MPa → kPa
@@ -24,18 +42,44 @@ std::string fmt(double v, int precision = 4) {
 }
 }  // namespace
 
-PressurePathResult run_pressure_path(const EnergyProblem& problem, const ChamberPressureForm& chamber, LoadState& load,
-                                     Vector& x, const PressurePathSpec& spec,
+PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::vector<const ChamberPressureForm*>& chambers,
+                                     LoadState& load, Vector& x, const PressurePathSpec& spec,
                                      const std::function<void(const PressureState&, const Vector&)>& on_state) {
   PressurePathResult out;
   LinearSolver solver;
-  if (load.chamber_pressure_MPa.size() <= static_cast<std::size_t>(spec.chamber))
-    load.chamber_pressure_MPa.resize(spec.chamber + 1, 0.0);
+  LoadedVolume chamber{chambers, spec.pressure_fractions};
+  if (chamber.fractions.empty()) chamber.fractions.assign(chambers.size(), 1.0);
+  if (chamber.fractions.size() != chambers.size())
+    throw std::logic_error("run_pressure_path: one pressure fraction per chamber");
+  const auto set_pressures = [&](double level) {
+    for (std::size_t i = 0; i < chambers.size(); ++i) {
+      const auto c = static_cast<std::size_t>(chambers[i]->chamber());
+      if (load.chamber_pressure_MPa.size() <= c) load.chamber_pressure_MPa.resize(c + 1, 0.0);
+      load.chamber_pressure_MPa[c] = level * chamber.fractions[i] * spec.max_pressure_kPa * kMPaPerKPa;
+    }
+  };
 
   // The unloaded state: its stiffness is the reference for "flattening".
-  load.chamber_pressure_MPa[spec.chamber] = 0.0;
+  set_pressures(0.0);
   load.dirichlet_scale = 0.0;
+  load.gravity_scale = 0.0;
   problem.apply_constraints(x, 0.0);
+  if (spec.gravity_preload) {
+    // Self-weight first, in its own path (it may bend a soft body noticeably).
+    PathCallbacks gravity;
+    gravity.apply_load = [&](double level) { load.gravity_scale = level; };
+    gravity.on_converged = [](double, const Vector&, bool, const NewtonReport&) {};
+    const PathResult preload = follow_load_path(problem, x, solver, {1.0}, gravity, spec.newton, spec.steps);
+    out.path.stats = preload.stats;
+    if (!preload.completed) {
+      out.path = preload;
+      out.outcome = PathOutcome::stalled;
+      out.diagnosis = "the body does not carry its own weight: the gravity preload stopped at " +
+                      fmt(100 * preload.reached_level, 3) + " % (" + to_string(preload.failure) + ": " +
+                      preload.message + "). Check the supports and the materials.";
+      return out;
+    }
+  }
   {
     const Evaluation e0 = problem.evaluate(x, true, true);
     solver.factorize(e0.hessian);
@@ -49,7 +93,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const Chamber
   for (double p : spec.output_pressures_kPa) levels.push_back(p / spec.max_pressure_kPa);
   PathCallbacks callbacks;
   callbacks.apply_load = [&](double level) {
-    load.chamber_pressure_MPa[spec.chamber] = level * spec.max_pressure_kPa * kMPaPerKPa;
+    set_pressures(level);
     load.dirichlet_scale = level;
   };
   callbacks.on_converged = [&](double level, const Vector& xs, bool is_output, const NewtonReport& report) {
@@ -58,7 +102,11 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const Chamber
     out.history.push_back(s);
     if (on_state) on_state(s, xs);
   };
+  const PathStatistics preload_stats = out.path.stats;
   out.path = follow_load_path(problem, x, solver, levels, callbacks, spec.newton, spec.steps);
+  out.path.stats.steps += preload_stats.steps;
+  out.path.stats.newton_iterations += preload_stats.newton_iterations;
+  out.path.stats.cutbacks += preload_stats.cutbacks;
   out.analyse_s = solver.analyse_seconds;
   out.factorize_s = solver.factorize_seconds;
   out.solve_s = solver.solve_seconds;

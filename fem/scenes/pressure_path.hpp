@@ -19,7 +19,7 @@ namespace softarm::fem {
 
 struct PressureState {
   double pressure_kPa = 0.0;
-  double chamber_volume_mm3 = 0.0;
+  double chamber_volume_mm3 = 0.0;         // Σ f_i V_i over the loaded chambers
   double pv_stiffness_kPa_per_mm3 = 0.0;   // dp/dV at this state
   bool tangent_positive_definite = true;
   int newton_iterations = 0;
@@ -49,7 +49,14 @@ struct PressurePathResult {
 };
 
 struct PressurePathSpec {
-  int chamber = 0;
+  /// Share of max_pressure_kPa of each loaded chamber (empty: all 1). The load
+  /// level λ sets p_i = λ·f_i·p_max; the volume conjugate to λ·p_max is
+  /// V = Σ f_i V_i, and it is this V (one chamber's volume when one is loaded)
+  /// whose dp/dV detects a limit point.
+  std::vector<double> pressure_fractions;
+  /// Apply gravity (LoadState::gravity_scale 0 → 1) before the pressure ramp:
+  /// self-weight is present from the start, not ramped with the pressure.
+  bool gravity_preload = false;
   double max_pressure_kPa = 0.0;
   std::vector<double> output_pressures_kPa;  // sorted, the last equals max_pressure_kPa
   NewtonSettings newton;
@@ -57,8 +64,10 @@ struct PressurePathSpec {
   LimitPointSettings limit;
 };
 
-/// Ramps `load.chamber_pressure_MPa[spec.chamber]` from 0; calls `on_state` for every converged step.
-PressurePathResult run_pressure_path(const EnergyProblem& problem, const ChamberPressureForm& chamber, LoadState& load,
+/// Ramps the pressures of `chambers` (entries of load.chamber_pressure_MPa) from 0
+/// together; calls `on_state` for every converged step.
+PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::vector<const ChamberPressureForm*>& chambers,
+                                     LoadState& load,
                                      Vector& x, const PressurePathSpec& spec,
                                      const std::function<void(const PressureState&, const Vector&)>& on_state);
 

@@ -70,7 +70,7 @@ AbaqusDeck rra_abaqus_deck(const RraSceneSpec& spec, const Mesh& mesh, double pr
   deck.clamped_node_sets = {"fixed_end"};
   deck.axis_node_sets = {"axis"};
   deck.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
-  deck.chamber_pressure_MPa.at(spec.path.chamber) = pressure_kPa * 1e-3;
+  deck.chamber_pressure_MPa.at(0) = pressure_kPa * 1e-3;
   deck.printed_node_sets = {"free_end_centre"};
   return deck;
 }
@@ -87,7 +87,7 @@ RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress) {
   out.element_name = elastic->element_name();
   LoadState load;
   load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
-  auto chamber = std::make_shared<ChamberPressureForm>(mesh, spec.path.chamber, load);
+  auto chamber = std::make_shared<ChamberPressureForm>(mesh, 0, load);
   EnergyProblem problem(flattened_positions(mesh), rra_constraints(mesh));
   problem.add_form(elastic);
   problem.add_form(chamber);
@@ -103,7 +103,7 @@ RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress) {
   const double sign = spec.design.fixed_end == RraDesign::FixedEnd::top ? -1.0 : 1.0;
   Vector x = problem.reference_positions();
   const auto t_solve = Clock::now();
-  out.path = run_pressure_path(problem, *chamber, load, x, spec.path, [&](const PressureState& s, const Vector& xs) {
+  out.path = run_pressure_path(problem, {chamber.get()}, load, x, spec.path, [&](const PressureState& s, const Vector& xs) {
     if (!s.is_output) return;
     out.curve.push_back(curve_point(s, mesh, *elastic, xs, free_node, sign));
     if (progress) progress(out.curve.back());

@@ -1,0 +1,74 @@
+#include "fem/post/face_measures.hpp"
+
+#include <Eigen/Geometry>
+#include <array>
+#include <stdexcept>
+
+#include "fem/elements/axisymmetric_quad.hpp"
+
+namespace softarm::fem {
+namespace {
+// Faces of the VTK hexahedron in quad order, oriented out of the element
+// (corners; for Hex27 then the mid-edge nodes and the face centre).
+constexpr int kHex8Faces[6][4] = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}};
+constexpr int kHex27Faces[6][9] = {{0, 4, 7, 3, 16, 15, 19, 11, 20}, {1, 2, 6, 5, 9, 18, 13, 17, 21},
+                                   {0, 1, 5, 4, 8, 17, 12, 16, 22},  {3, 7, 6, 2, 19, 14, 18, 10, 23},
+                                   {0, 3, 2, 1, 11, 10, 9, 8, 24},   {4, 5, 6, 7, 12, 13, 14, 15, 25}};
+}  // namespace
+
+std::vector<std::vector<int>> boundary_faces_in(const Mesh& mesh, const std::vector<int>& node_set) {
+  if (mesh.dim != 3 || (mesh.nodes_per_element != 8 && mesh.nodes_per_element != 27))
+    throw std::logic_error("boundary_faces_in: hexahedral meshes only");
+  std::vector<char> in(mesh.num_nodes(), 0);
+  for (int n : node_set) in[n] = 1;
+  const bool quadratic = mesh.nodes_per_element == 27;
+  std::vector<std::vector<int>> faces;
+  for (int e = 0; e < mesh.num_elements(); ++e)
+    for (int f = 0; f < 6; ++f) {
+      std::vector<int> face;
+      for (int a = 0; a < (quadratic ? 9 : 4); ++a) face.push_back(mesh.element(e)[quadratic ? kHex27Faces[f][a] : kHex8Faces[f][a]]);
+      bool all = true;
+      for (int n : face) all = all && in[n];
+      if (all) faces.push_back(face);
+    }
+  return faces;
+}
+
+FaceMeasure measure_face(const std::vector<std::vector<int>>& facets, const Eigen::VectorXd& x) {
+  constexpr double g = 0.7745966692414834, kPoints[3] = {-g, 0.0, g}, kWeights[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+  FaceMeasure m;
+  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
+  for (const auto& f : facets) {
+    const int n = static_cast<int>(f.size());
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        std::array<double, 9> N{}, dN_ds{}, dN_dt{};
+        if (n == 9)
+          axisym::Quad9::shape(kPoints[i], kPoints[j], N.data(), dN_ds.data(), dN_dt.data());
+        else
+          axisym::Quad4::shape(kPoints[i], kPoints[j], N.data(), dN_ds.data(), dN_dt.data());
+        Eigen::Vector3d p = Eigen::Vector3d::Zero(), xs = p, xt = p;
+        for (int a = 0; a < n; ++a) {
+          const Eigen::Vector3d xa = x.segment<3>(3 * f[a]);
+          p += N[a] * xa, xs += dN_ds[a] * xa, xt += dN_dt[a] * xa;
+        }
+        const Eigen::Vector3d da = kWeights[i] * kWeights[j] * xs.cross(xt);
+        m.vector_area += da;
+        m.area += da.norm();
+        first_moment += da.norm() * p;
+      }
+  }
+  if (m.area > 0) m.centroid = first_moment / m.area;
+  return m;
+}
+
+FaceMeasure mirror_completed(const FaceMeasure& half) {
+  FaceMeasure full = half;
+  full.vector_area = 2 * half.vector_area;
+  full.vector_area.y() = 0;
+  full.area = 2 * half.area;
+  full.centroid.y() = 0;
+  return full;
+}
+
+}  // namespace softarm::fem

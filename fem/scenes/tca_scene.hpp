@@ -1,0 +1,109 @@
+#pragma once
+// The three-chambered actuator (3CA) bending scene (thesis §6.1): the top face
+// clamped ("ENCASTRE"), chambers pressurised together from 0 to their peak
+// pressures, optional gravity, quasi-static. Outputs along the path: bending
+// angle (angle between the free face's mean normal now and at rest, spec §4),
+// tip position (the free face's centroid), chamber volume, Newton iterations;
+// at the end: peak principal stretch and stress per part.
+//
+// Model only what the scene requires: when the pressures and gravity are
+// mirror-symmetric about the plane through the 3CA axis and one chamber's axis
+// (p of the other two equal, gravity in that plane), the scene is solved on the
+// half model with the symmetry plane constrained, which halves the unknowns and
+// costs ~3× less to factorise; otherwise on the full model. The choice and its
+// reason are part of the result.
+//
+// Frames: the user frame has the 3CA axis along z (top face z = l fixed, free
+// face z = 0) and chamber 1's axis on +x (chamber k at (k − 1)·120°). The solver
+// frame is rotated about z so that the mirror plane is y = 0; every reported
+// position and vector is in the user frame.
+#include <Eigen/Core>
+#include <array>
+#include <chrono>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fem/forms/elastic_form.hpp"
+#include "fem/materials/material.hpp"
+#include "fem/mesh/mesh.hpp"
+#include "fem/mesh/tca_design.hpp"
+#include "fem/scenes/pressure_path.hpp"
+
+namespace softarm::fem {
+
+struct TcaSceneSpec {
+  TcaDesign design;
+  Material tube_material, ring_material, sheath_material;
+  int mesh_level = 1;
+  int element_order = 2;                                   // 1: Hex8/P0, 2: Hex27/P1
+  std::array<double, 3> chamber_pressure_kPa{0, 0, 0};      // peak pressure of chambers 1–3, ramped together
+  Eigen::Vector3d gravity_m_s2 = Eigen::Vector3d::Zero();   // user frame
+  bool allow_symmetry = true;                               // false: always the full model
+  std::vector<double> output_pressures_kPa;                 // of the most pressurised chamber; last = its peak
+  double target_bending_deg = 90;                           // report the pressure that reaches it
+  NewtonSettings newton;
+  StepSettings steps;
+  LimitPointSettings limit;
+};
+
+/// Which model the scene was solved on, and why.
+struct ModelChoice {
+  std::string name;      // e.g. "half model (symmetry plane through chamber 1)"
+  std::string reason;
+  bool half = false;
+  int mirror_chamber = 0;          // 1–3 when half
+  double frame_angle_rad = 0;      // solver frame = user frame rotated by −this about z
+};
+
+struct TcaState {
+  double pressure_kPa = 0;             // of the most pressurised chamber
+  double bending_angle_deg = 0;        // signed: > 0 away from the pressurised chambers
+  Eigen::Vector3d tip_position_mm = Eigen::Vector3d::Zero();      // free face centroid
+  Eigen::Vector3d tip_displacement_mm = Eigen::Vector3d::Zero();
+  double chamber_volume_mm3 = 0;       // Σ f_i V_i over the loaded chambers (full model)
+  int newton_iterations = 0;
+  bool is_output = false;
+};
+
+struct PartPeak {
+  std::string part;
+  double max_principal_stretch = 1, max_principal_stress_MPa = 0, max_principal_log_strain = 0;
+};
+
+struct SceneTimings {
+  double mesh_s = 0, setup_s = 0, solve_s = 0, total_s = 0, assembly_s = 0;
+  double factorize_s = 0;
+  int factorizations = 0;
+};
+
+struct TcaResult {
+  Mesh mesh;                          // in the user frame (the half model's half when half)
+  ModelChoice model;
+  std::string element_name;
+  int dofs = 0;
+  std::vector<TcaState> states;       // every converged state, rest included
+  std::vector<TcaState> curve;        // the requested outputs (and the last state reached)
+  PressurePathResult path;
+  std::optional<double> target_pressure_kPa;   // where the bending angle reaches the target
+  std::vector<PartPeak> final_peaks;  // at the last state reached
+  std::vector<std::pair<std::string, double>> part_mass_kg;  // full body
+  double mass_kg = 0;
+  Vector final_positions;             // user frame
+  std::vector<ElementResult> final_element_results;
+  SceneTimings timings;
+};
+
+using TcaProgress = std::function<void(const TcaState&)>;
+
+/// The model a spec will be solved on (no solve).
+ModelChoice choose_tca_model(const TcaSceneSpec& spec);
+
+TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress = {});
+
+/// The pressure at which the states' bending angle first reaches `angle_deg`
+/// (quadratic interpolation through the neighbouring states), if it does.
+std::optional<double> pressure_at_bending(const std::vector<TcaState>& states, double angle_deg);
+
+}  // namespace softarm::fem
