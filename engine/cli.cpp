@@ -6,6 +6,7 @@
 #include "engine/material_command.hpp"
 #include "engine/rra_report.hpp"
 #include "engine/scene_config.hpp"
+#include "engine/tca_report.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/core/json_reader.hpp"
 #include "fem/core/parallel.hpp"
@@ -13,12 +14,22 @@
 namespace softarm::engine {
 namespace {
 
+int simulate_tca(const SceneConfig& config) {
+  const fem::ModelChoice model = fem::choose_tca_model(config.tca);
+  std::cout << "model: " << model.name << " (" << model.reason << ")\n";
+  TcaCurveWriter writer(config.output.directory, std::cout);
+  const auto result = fem::run_tca_scene(config.tca, [&](const fem::TcaState& s) { writer.add(s); });
+  write_tca_summary(config, result, std::cout);
+  return result.path.outcome == fem::PathOutcome::stalled ? 1 : 0;
+}
+
 int simulate(const std::string& file, const std::string& output_override, int mesh_level_override) {
   SceneConfig config = load_scene_config(file);
   if (!output_override.empty()) config.output.directory = output_override;
-  if (mesh_level_override > 0) config.rra.mesh_level = mesh_level_override;
-  std::cout << "softarm simulate: " << file << " (scene " << config.scene << ", mesh level " << config.rra.mesh_level
+  if (mesh_level_override > 0) config.mesh_level() = mesh_level_override;
+  std::cout << "softarm simulate: " << file << " (scene " << config.scene << ", mesh level " << config.mesh_level()
             << ", threads " << fem::thread_count() << ")\n";
+  if (config.scene == "tca") return simulate_tca(config);
   RraCurveWriter writer(config.output.directory, std::cout);
   const auto result = fem::run_rra_scene(config.rra, [&](const fem::RraCurvePoint& p) { writer.add(p); });
   write_rra_summary(config, result, std::cout);

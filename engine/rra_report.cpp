@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <iomanip>
 
-#include "fem/core/input_error.hpp"
+#include "engine/output_files.hpp"
 #include "fem/io/vtu_writer.hpp"
 
 namespace softarm::engine {
@@ -41,13 +41,8 @@ void write_vtu(const std::string& path, const fem::RraResult& r) {
 
 }  // namespace
 
-RraCurveWriter::RraCurveWriter(const std::string& directory, std::ostream& out) : out_(out) {
-  std::error_code error;
-  std::filesystem::create_directories(directory, error);
-  csv_.open(directory + "/curve.csv");
-  if (error || !csv_)
-    throw fem::InputError("output.directory", "cannot write to '" + directory + "'" +
-                                                  (error ? ": " + error.message() : std::string()));
+RraCurveWriter::RraCurveWriter(const std::string& directory, std::ostream& out)
+    : csv_(open_output_file(directory, "curve.csv")), out_(out) {
   csv_ << "pressure_kPa,extension_mm,chamber_volume_mm3,pv_stiffness_kPa_per_mm3,tube_max_principal_stretch,"
           "tube_max_principal_stress_MPa,ring_max_principal_stress_MPa,newton_iterations\n";
   out_ << "  pressure_kPa  extension_mm  volume_mm3  dp/dV_kPa/mm3  max_stretch  max_stress_MPa(tube/ring)\n";
@@ -89,10 +84,7 @@ nlohmann::json write_rra_summary(const SceneConfig& config, const fem::RraResult
                   {"factorize", r.path.factorize_s}, {"total", r.timings.total_s}}}};
   if (r.path.outcome == fem::PathOutcome::limit_point)
     summary["estimated_limit_pressure_kPa"] = r.path.estimated_limit_pressure_kPa;
-  {
-    std::ofstream f(dir + "/summary.json");
-    f << summary.dump(2) << "\n";
-  }
+  write_json_file(dir, "summary.json", summary);
   if (config.output.vtu) write_vtu(dir + "/deformed.vtu", r);
 
   out << "\noutcome: " << fem::to_string(r.path.outcome) << " — " << r.path.diagnosis << "\n";

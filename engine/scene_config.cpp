@@ -11,35 +11,33 @@ using fem::Range;
 
 namespace {
 
-fem::PressurePathSpec read_load(JsonReader load, JsonReader solver) {
-  fem::PressurePathSpec path;
-  path.max_pressure_kPa = load.number("max_pressure_kPa", Range::positive(), "final chamber pressure, kPa");
+/// Output pressures (sorted, ending at max_pressure): a list, or a count of evenly spaced ones.
+std::vector<double> read_output_pressures(JsonReader& load, double max_pressure) {
   auto outputs = load.number_list("output_pressures_kPa", Range::positive(),
                                   "pressures at which the curve is reported (the solver lands on each exactly)");
   const int count = load.integer("output_count", 10, Range::closed(1, 10000),
                                  "number of evenly spaced output pressures when output_pressures_kPa is absent");
   if (outputs.empty())
-    for (int i = 1; i <= count; ++i) outputs.push_back(path.max_pressure_kPa * i / count);
+    for (int i = 1; i <= count; ++i) outputs.push_back(max_pressure * i / count);
   for (double p : outputs)
-    if (p > path.max_pressure_kPa * (1 + 1e-12))
-      throw InputError(load.field("output_pressures_kPa"), "value " + std::to_string(p) +
-                       " exceeds max_pressure_kPa = " + std::to_string(path.max_pressure_kPa));
-  outputs.push_back(path.max_pressure_kPa);
+    if (p > max_pressure * (1 + 1e-12))
+      throw InputError(load.field("output_pressures_kPa"),
+                       "value " + std::to_string(p) + " exceeds the peak pressure " + std::to_string(max_pressure) + " kPa");
+  outputs.push_back(max_pressure);
   std::sort(outputs.begin(), outputs.end());
   outputs.erase(std::unique(outputs.begin(), outputs.end(),
                             [](double a, double b) { return std::abs(a - b) < 1e-12 * std::max(1.0, std::abs(b)); }),
                 outputs.end());
-  path.output_pressures_kPa = outputs;
-  load.finish();
+  return outputs;
+}
 
-  auto& st = path.steps;
+void read_solver(JsonReader solver, fem::NewtonSettings& nw, fem::StepSettings& st, fem::LimitPointSettings& limit) {
   st.initial_increment = solver.number("initial_increment_fraction", st.initial_increment, Range::open(0, 1),
                                        "first load increment as a fraction of the full load");
   st.max_increment = solver.number("max_increment_fraction", st.max_increment, Range::closed(1e-6, 1),
                                    "largest load increment as a fraction of the full load");
   st.min_increment = solver.number("min_increment_fraction", st.min_increment, Range::open(0, 1),
                                    "smallest increment before the path is declared stuck");
-  auto& nw = path.newton;
   nw.max_iterations = solver.integer("max_newton_iterations", nw.max_iterations, Range::closed(1, 1000),
                                      "Newton iterations per step before a cut-back");
   nw.residual_tolerance = solver.number("residual_tolerance", nw.residual_tolerance, Range::open(0, 1),
@@ -47,11 +45,31 @@ fem::PressurePathSpec read_load(JsonReader load, JsonReader solver) {
   nw.update_tolerance = solver.number("update_tolerance", nw.update_tolerance, Range::open(0, 1),
                                       "‖δx‖ / ‖u‖ at convergence");
   st.verbose = solver.boolean("print_convergence_tables", false, "print a Newton convergence table for every step");
-  path.limit.stiffness_fraction =
-      solver.number("limit_point_stiffness_fraction", path.limit.stiffness_fraction, Range::open(0, 1),
+  limit.stiffness_fraction =
+      solver.number("limit_point_stiffness_fraction", limit.stiffness_fraction, Range::open(0, 1),
                     "a failed step with dp/dV below this fraction of its initial value is reported as a limit point");
   solver.finish();
+}
+
+fem::PressurePathSpec read_load(JsonReader load, JsonReader solver) {
+  fem::PressurePathSpec path;
+  path.max_pressure_kPa = load.number("max_pressure_kPa", Range::positive(), "final chamber pressure, kPa");
+  path.output_pressures_kPa = read_output_pressures(load, path.max_pressure_kPa);
+  load.finish();
+  read_solver(std::move(solver), path.newton, path.steps, path.limit);
   return path;
+}
+
+/// A material by part: a built-in name or a material object.
+fem::Material read_material(JsonReader& materials, const std::string& key, const char* default_name) {
+  return fem::material_from_json(materials.has(key) ? materials.raw(key) : nlohmann::json(default_name),
+                                 materials.field(key));
+}
+
+/// Mesh level and element order; `max_level` bounds what this machine can hold.
+void read_mesh(JsonReader& mesh, int& level, int& order, int max_level, const std::string& order_doc) {
+  level = mesh.integer("level", level, Range::closed(1, max_level), "refinement level (each level halves the element size)");
+  order = mesh.integer("element_order", order, Range::closed(1, 2), order_doc);
 }
 
 fem::RraSceneSpec read_rra(JsonReader& root) {
@@ -62,19 +80,13 @@ fem::RraSceneSpec read_rra(JsonReader& root) {
   fem::validate(spec.design);
 
   auto materials = root.object("materials", "materials by part: a built-in name or a material object");
-  auto read_material = [&](const std::string& key, const char* default_name) {
-    return fem::material_from_json(materials.has(key) ? materials.raw(key) : nlohmann::json(default_name),
-                                   materials.field(key));
-  };
-  spec.tube_material = read_material("tube", "dragon_skin_30");
-  spec.ring_material = read_material("rings", "digital_abs");
+  spec.tube_material = read_material(materials, "tube", "dragon_skin_30");
+  spec.ring_material = read_material(materials, "rings", "digital_abs");
   materials.finish();
 
   auto mesh = root.object("mesh", "discretisation");
-  spec.mesh_level = mesh.integer("level", spec.mesh_level, Range::closed(1, 6),
-                                 "refinement level (each level halves the element size)");
-  spec.element_order = mesh.integer("element_order", spec.element_order, Range::closed(1, 2),
-                                    "1: bilinear Q1/P0 (mean dilatation); 2: biquadratic Q2/P1 (converges next to rigid rings)");
+  read_mesh(mesh, spec.mesh_level, spec.element_order, 6,
+            "1: bilinear Q1/P0 (mean dilatation); 2: biquadratic Q2/P1 (converges next to rigid rings)");
   const auto treatment = mesh.choice("volumetric_treatment", "projected_dilatation", {"projected_dilatation", "pointwise"},
                                      "projected_dilatation avoids locking; pointwise is kept for comparison only");
   spec.treatment = treatment == "pointwise" ? fem::VolumetricTreatment::pointwise : fem::VolumetricTreatment::projected_dilatation;
@@ -84,13 +96,61 @@ fem::RraSceneSpec read_rra(JsonReader& root) {
   return spec;
 }
 
+fem::TcaSceneSpec read_tca(JsonReader& root) {
+  fem::TcaSceneSpec spec;
+  auto geometry = root.object("geometry", "3CA geometry: the RRA keys plus spacing, sheath and centre hole");
+  spec.design = fem::read_tca_design(geometry);
+
+  auto materials = root.object("materials", "materials by part: a built-in name or a material object");
+  spec.tube_material = read_material(materials, "tube", "dragon_skin_30");
+  spec.ring_material = read_material(materials, "rings", "digital_abs");
+  spec.sheath_material = read_material(materials, "sheath", "dragon_skin_30");
+  materials.finish();
+
+  auto mesh = root.object("mesh", "discretisation");
+  read_mesh(mesh, spec.mesh_level, spec.element_order, 3,
+            "1: trilinear Hex8/P0 (mean dilatation; locks in bending at coarse levels); 2: triquadratic Hex27/P1");
+  mesh.finish();
+
+  auto model = root.object("model", "model reduction");
+  spec.allow_symmetry = model.choice("symmetry", "auto", {"auto", "off"},
+                                     "auto: solve a half model when pressures and gravity are mirror-symmetric") == "auto";
+  model.finish();
+
+  auto load = root.object("load", "loading");
+  const auto pressures = load.number_list("chamber_pressures_kPa", Range::non_negative(),
+                                          "peak pressure of chambers 1, 2, 3 (kPa), ramped together from 0");
+  if (pressures.size() != 3 || *std::max_element(pressures.begin(), pressures.end()) <= 0)
+    throw InputError(load.field("chamber_pressures_kPa"),
+                     "needs three pressures (chambers 1, 2, 3), at least one > 0; got " +
+                         std::to_string(pressures.size()) + " values");
+  std::copy(pressures.begin(), pressures.end(), spec.chamber_pressure_kPa.begin());
+  const double p_max = *std::max_element(pressures.begin(), pressures.end());
+  spec.output_pressures_kPa = read_output_pressures(load, p_max);
+  const auto g = load.number_list("gravity_m_s2", Range{},
+                                  "gravity vector (m/s²) in the 3CA frame: z along the axis towards the fixed top, "
+                                  "chamber 1 on +x; absent or [0, 0, 0]: off");
+  if (!g.empty() && g.size() != 3)
+    throw InputError(load.field("gravity_m_s2"), "needs three components (x, y, z), got " + std::to_string(g.size()));
+  if (g.size() == 3) spec.gravity_m_s2 = Eigen::Vector3d(g[0], g[1], g[2]);
+  spec.target_bending_deg = load.number("target_bending_deg", 90, Range::open(0, 180),
+                                        "bending angle whose pressure is reported (deg)");
+  load.finish();
+  read_solver(root.object("solver", "nonlinear solver controls"), spec.newton, spec.steps, spec.limit);
+  return spec;
+}
+
 }  // namespace
 
 SceneConfig read_scene_config(const nlohmann::json& document) {
   JsonReader root(document, "");
   SceneConfig config;
-  config.scene = root.choice("scene", "rra", {"rra"}, "which assembly to simulate");
-  config.rra = read_rra(root);
+  config.scene = root.choice("scene", "rra", {"rra", "tca"},
+                             "which assembly to simulate: rra (ring-reinforced actuator), tca (three-chambered actuator)");
+  if (config.scene == "tca")
+    config.tca = read_tca(root);
+  else
+    config.rra = read_rra(root);
   auto output = root.object("output", "where results go");
   config.output.directory = output.string("directory", "out/" + config.scene, "output directory (created if absent)");
   config.output.vtu = output.boolean("vtu", true, "write the deformed mesh as VTU for ParaView");

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "fem/scenes/rra_scene.hpp"
+#include "fem/scenes/tca_scene.hpp"
 
 namespace softarm::engine {
 
@@ -15,10 +16,12 @@ struct OutputSpec {
 };
 
 struct SceneConfig {
-  std::string scene;               // "rra"
-  fem::RraSceneSpec rra;
+  std::string scene;               // "rra" or "tca"
+  fem::RraSceneSpec rra;           // scene "rra"
+  fem::TcaSceneSpec tca;           // scene "tca"
   OutputSpec output;
   bool verbose = false;
+  int& mesh_level() { return scene == "tca" ? tca.mesh_level : rra.mesh_level; }
 };
 
 /// Reads a scene file (the whole document); throws fem::InputError naming the field.

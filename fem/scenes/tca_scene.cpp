@@ -99,22 +99,34 @@ std::optional<double> pressure_at_bending(const std::vector<TcaState>& s, double
   return std::nullopt;
 }
 
-TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
-  const auto t_start = Clock::now();
+Mesh tca_mesh(const TcaSceneSpec& spec, const ModelChoice& model) {
   validate(spec.design);
-  TcaResult out;
-  out.model = choose_tca_model(spec);
-  const double theta = out.model.frame_angle_rad;
   SolidMeshOptions options;
   options.level = spec.mesh_level;
   options.order = spec.element_order;
-  options.half = out.model.half;
-  options.first_axis_angle_rad = -theta;  // chamber k on +x in the solver frame
-  Mesh mesh = mesh_tca(spec.design, options);
+  options.half = model.half;
+  options.first_axis_angle_rad = -model.frame_angle_rad;  // the mirror chamber on +x in the solver frame
+  return mesh_tca(spec.design, options);
+}
+
+std::vector<Material> tca_part_materials(const TcaSceneSpec& spec) {
+  return {spec.tube_material, spec.ring_material, spec.sheath_material};
+}
+
+Eigen::Vector3d tca_solver_gravity(const TcaSceneSpec& spec, const ModelChoice& model) {
+  return rotation_z(-model.frame_angle_rad) * spec.gravity_m_s2;
+}
+
+TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
+  const auto t_start = Clock::now();
+  TcaResult out;
+  out.model = choose_tca_model(spec);
+  const double theta = out.model.frame_angle_rad;
+  Mesh mesh = tca_mesh(spec, out.model);
   out.timings.mesh_s = since(t_start);
 
   const auto t_setup = Clock::now();
-  std::vector<Material> materials = {spec.tube_material, spec.ring_material, spec.sheath_material};
+  const std::vector<Material> materials = tca_part_materials(spec);
   auto elastic = make_elastic_form(mesh, materials);
   out.element_name = elastic->element_name();
   LoadState load;
@@ -134,7 +146,7 @@ TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
       path.pressure_fractions.push_back(p[c] / p_max);
     }
   if (spec.gravity_m_s2.norm() > 0) {
-    problem.add_form(std::make_shared<GravityForm>(mesh, materials, rotation_z(-theta) * spec.gravity_m_s2, load));
+    problem.add_form(std::make_shared<GravityForm>(mesh, materials, tca_solver_gravity(spec, out.model), load));
     path.gravity_preload = true;
   }
   problem.finalize();

@@ -100,6 +100,13 @@ using TcaProgress = std::function<void(const TcaState&)>;
 /// The model a spec will be solved on (no solve).
 ModelChoice choose_tca_model(const TcaSceneSpec& spec);
 
+/// The mesh the scene is solved on, in the solver frame of `model` (half or full),
+/// and the material of each of its parts ("tube", "rings", "sheath").
+Mesh tca_mesh(const TcaSceneSpec& spec, const ModelChoice& model);
+std::vector<Material> tca_part_materials(const TcaSceneSpec& spec);
+/// Gravity in the solver frame of `model`.
+Eigen::Vector3d tca_solver_gravity(const TcaSceneSpec& spec, const ModelChoice& model);
+
 TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress = {});
 
 /// The pressure at which the states' bending angle first reaches `angle_deg`

@@ -1,0 +1,17 @@
+#pragma once
+// Result files of every scene: created in the output directory (made if
+// absent); a directory that cannot be written is bad input naming
+// output.directory, not an internal error.
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace softarm::engine {
+
+/// Opens <directory>/<file> for writing; throws fem::InputError("output.directory", …) if it cannot.
+std::ofstream open_output_file(const std::string& directory, const std::string& file);
+
+/// Writes `document` to <directory>/<file>, indented.
+void write_json_file(const std::string& directory, const std::string& file, const nlohmann::json& document);
+
+}  // namespace softarm::engine
