@@ -12,7 +12,7 @@ constexpr double kKgPerMm3PerGcm3 = 1e-6;
 
 GravityForm::GravityForm(const Mesh& mesh, const std::vector<Material>& part_materials,
                          const Eigen::Vector3d& gravity_m_s2, const LoadState& load)
-    : load_(load), forces_(Vector::Zero(mesh.num_nodes() * mesh.dim)) {
+    : load_(load), gravity_m_s2_(gravity_m_s2), dim_(mesh.dim), forces_(Vector::Zero(mesh.num_nodes() * mesh.dim)) {
   if (part_materials.size() < mesh.part_names.size())
     throw std::logic_error("gravity: a material is missing for a mesh part");
   if (mesh.dim == 2 && (gravity_m_s2.x() != 0.0 || gravity_m_s2.y() != 0.0))
@@ -32,6 +32,15 @@ GravityForm::GravityForm(const Mesh& mesh, const std::vector<Material>& part_mat
   } catch (const std::logic_error& error) {
     throw std::logic_error(std::string("gravity: ") + error.what());
   }
+}
+
+void GravityForm::add_carried_mass(const Eigen::VectorXd& area_weights, double mass_kg) {
+  if (dim_ != 3) throw std::logic_error("gravity: a carried mass needs a 3D mesh");
+  const double total = area_weights.sum();
+  if (!(total > 0) || mass_kg <= 0) return;
+  // kg · m/s² = N: the weight m g, shared by the nodes like a uniform traction.
+  for (Eigen::Index n = 0; n < area_weights.size(); ++n)
+    forces_.segment<3>(3 * n) += mass_kg * gravity_m_s2_ * (area_weights[n] / total);
 }
 
 FormStatus GravityForm::add(const Vector& x, double* value, Vector* gradient, HessianAccumulator*) const {

@@ -37,11 +37,18 @@ class GravityForm : public Form {
   void declare_pattern(SparsePattern&) override {}  // zero Hessian: couples nothing
   FormStatus add(const Vector& x, double* value, Vector* gradient, HessianAccumulator* hessian) const override;
 
+  /// Adds the weight of a point mass carried by a face (e.g. a payload at the tip),
+  /// spread over its nodes in proportion to ∫ N_a dA (`area_weights`, per node).
+  /// 3D meshes only.
+  void add_carried_mass(const Eigen::VectorXd& area_weights, double mass_kg);
+
   /// Consistent nodal forces at gravity_scale = 1, N (dof layout of x).
   const Vector& nodal_forces() const { return forces_; }
 
  private:
   const LoadState& load_;
+  Eigen::Vector3d gravity_m_s2_;
+  int dim_;
   Vector forces_;
 };
 

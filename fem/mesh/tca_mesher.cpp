@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "fem/mesh/layered_extrusion.hpp"
+#include "fem/mesh/spl_design.hpp"
 
 namespace softarm::fem {
 namespace {
@@ -59,36 +60,100 @@ int part_of_region(SectionRegion region, const BandKind& band, bool with_core) {
   return -1;
 }
 
-Mesh mesh_actuators(const TcaDesign& design, int actuators, const SolidMeshOptions& options) {
-  if (options.level < 1) throw std::logic_error("mesh level must be >= 1");
-  const RraDesign& rra = design.actuator;
-  const double a = rra.ring_count > 0 ? square_ring_side_mm(rra) : 0.0;
-  const auto geometry = [&](double z) {
-    SectionGeometry g;
-    g.outer_radius = rra.outer_radius(z);
-    g.wall_thickness = rra.wall_thickness_mm;
-    g.ring_side = a;
-    g.spacing = design.actuator_spacing_mm;
-    g.sheath_thickness = design.sheath_thickness_mm;
-    g.hole_radius = design.centre_hole_diameter_mm / 2;
-    g.first_axis_angle = options.first_axis_angle_rad;
-    return g;
-  };
-  const SectionGeometry reference = geometry(rra.length_mm / 2);
-  // Without rings the ring band is a thin slice of wall; give it a nominal width.
-  SectionGeometry ref = reference;
-  const auto with_band = [&](SectionGeometry g) {
-    if (g.ring_side <= 0) g.ring_side = 0.2 * g.wall_thickness;
-    return g;
-  };
-  const ActuatorSection section(actuators, options.level, actuators == 3 && reference.hole_radius > 0, with_band(ref));
+/// One piece of a stack along z: an actuator segment (3CA or lone RRA) or a solid connector.
+struct StackPiece {
+  const TcaDesign* segment = nullptr;  // null: connector
+  double z0 = 0, z1 = 0;
+  int first_chamber = 0;               // mesh chamber index of the segment's actuator 0
+};
 
+/// The section sizes of a segment at its local height.
+SectionGeometry segment_geometry(const TcaDesign& design, double local_z, double first_axis_angle) {
+  const RraDesign& rra = design.actuator;
+  SectionGeometry g;
+  g.outer_radius = rra.outer_radius(local_z);
+  g.wall_thickness = rra.wall_thickness_mm;
+  // Without rings the ring band is a thin slice of wall and core (one material each side).
+  g.ring_side = rra.ring_count > 0 ? square_ring_side_mm(rra) : 0.2 * rra.wall_thickness_mm;
+  g.spacing = design.actuator_spacing_mm;
+  g.sheath_thickness = design.sheath_thickness_mm;
+  g.hole_radius = design.centre_hole_diameter_mm / 2;
+  g.first_axis_angle = first_axis_angle;
+  return g;
+}
+
+SectionGeometry lerp(const SectionGeometry& a, const SectionGeometry& b, double t) {
+  SectionGeometry g = a;
+  const auto mix = [t](double p, double q) { return p + t * (q - p); };
+  g.outer_radius = mix(a.outer_radius, b.outer_radius);
+  g.wall_thickness = mix(a.wall_thickness, b.wall_thickness);
+  g.ring_side = mix(a.ring_side, b.ring_side);
+  g.spacing = mix(a.spacing, b.spacing);
+  g.sheath_thickness = mix(a.sheath_thickness, b.sheath_thickness);
+  g.hole_radius = mix(a.hole_radius, b.hole_radius);
+  return g;
+}
+
+constexpr double kMaxConnectorLayer = 20.0;  // mm per element layer in a (stiff) connector at level 1
+
+/// Meshes a stack of segments and connectors, bottom to top. Connectors take the
+/// sections of the segments they join (blended linearly through their thickness), so
+/// every interface conforms; a connector at an end of the stack copies its one neighbour.
+Mesh mesh_stack(const std::vector<StackPiece>& pieces, int actuators, int chamber_count, const SolidMeshOptions& options,
+                const std::vector<std::string>& chamber_names) {
+  if (options.level < 1) throw std::logic_error("mesh level must be >= 1");
+  const double angle = options.first_axis_angle_rad;
+  // Section sizes at the bottom and top of every piece.
+  std::vector<SectionGeometry> bottom(pieces.size()), top(pieces.size());
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+    if (pieces[i].segment) {
+      bottom[i] = segment_geometry(*pieces[i].segment, 0.0, angle);
+      top[i] = segment_geometry(*pieces[i].segment, pieces[i].segment->actuator.length_mm, angle);
+    }
+  for (std::size_t i = 0; i < pieces.size(); ++i)
+    if (!pieces[i].segment) {
+      if (i == 0 && pieces.size() == 1) throw std::logic_error("mesh_stack: a connector needs a segment");
+      bottom[i] = i > 0 ? top[i - 1] : bottom[i + 1];
+      top[i] = i + 1 < pieces.size() ? bottom[i + 1] : top[i - 1];
+    }
+  const auto geometry = [&](double z) {
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const auto& p = pieces[i];
+      if (z > p.z1 + 1e-9 * (1 + std::abs(p.z1)) && i + 1 < pieces.size()) continue;
+      if (p.segment) return segment_geometry(*p.segment, std::clamp(z - p.z0, 0.0, p.z1 - p.z0), angle);
+      return lerp(bottom[i], top[i], std::clamp((z - p.z0) / (p.z1 - p.z0), 0.0, 1.0));
+    }
+    return top.back();
+  };
+  const SectionGeometry reference = geometry(0.5 * (pieces.front().z0 + pieces.front().z1));
+  const ActuatorSection section(actuators, options.level, actuators == 3 && reference.hole_radius > 0, reference);
+
+  struct LayerKind {
+    BandKind band;
+    int piece = 0;
+  };
   std::vector<ExtrusionLayer> layers;
-  std::vector<BandKind> kinds;
-  actuator_bands(rra, a, options.level, layers, kinds);
+  std::vector<LayerKind> kinds;
+  for (std::size_t i = 0; i < pieces.size(); ++i) {
+    const auto& p = pieces[i];
+    if (!p.segment) {
+      const int n = std::max(1, static_cast<int>(std::ceil((p.z1 - p.z0) / kMaxConnectorLayer - 1e-9)));
+      layers.push_back({p.z0, p.z1, options.level * n});
+      kinds.push_back({{}, static_cast<int>(i)});
+      continue;
+    }
+    std::vector<ExtrusionLayer> bands;
+    std::vector<BandKind> band_kinds;
+    const RraDesign& rra = p.segment->actuator;
+    actuator_bands(rra, rra.ring_count > 0 ? square_ring_side_mm(rra) : 0.0, options.level, bands, band_kinds);
+    for (std::size_t b = 0; b < bands.size(); ++b) {
+      layers.push_back({bands[b].z0 + p.z0, bands[b].z1 + p.z0, bands[b].divisions});
+      kinds.push_back({band_kinds[b], static_cast<int>(i)});
+    }
+  }
 
   // Half models keep the quads on the y ≥ 0 side (y = 0 is made of element edges).
-  const auto x_ref = section.positions(with_band(ref));
+  const auto x_ref = section.positions(reference);
   std::vector<char> kept(section.num_quads(), 1);
   if (options.half)
     for (int q = 0; q < section.num_quads(); ++q) {
@@ -97,32 +162,71 @@ Mesh mesh_actuators(const TcaDesign& design, int actuators, const SolidMeshOptio
       kept[q] = y > 0;
     }
   const bool with_core = actuators == 3;
+  const int connector_part = with_core ? kSheath + 1 : kRings + 1;
   ExtrusionRules rules;
-  rules.geometry = [&](double z) { return with_band(geometry(z)); };
+  rules.geometry = geometry;
   rules.part = [&](int q, int layer) {
-    return kept[q] ? part_of_region(section.region(q), kinds[layer], with_core) : -1;
+    if (!kept[q]) return -1;
+    if (!pieces[kinds[layer].piece].segment) return connector_part;
+    return part_of_region(section.region(q), kinds[layer].band, with_core);
   };
   rules.cavity = [&](int q, int layer) {
-    return kept[q] && section.region(q) == SectionRegion::chamber && !kinds[layer].cap ? section.actuator(q) : -1;
+    const auto& piece = pieces[kinds[layer].piece];
+    return kept[q] && piece.segment && section.region(q) == SectionRegion::chamber && !kinds[layer].band.cap
+               ? piece.first_chamber + section.actuator(q)
+               : -1;
   };
   std::vector<Chamber> chambers;
-  for (int i = 0; i < actuators; ++i) chambers.push_back({i + 1, "chamber " + std::to_string(i + 1), {}});
+  for (int i = 0; i < chamber_count; ++i) chambers.push_back({i + 1, chamber_names[i], {}});
   std::vector<std::string> parts = {"tube", "rings"};
   if (with_core) parts.push_back("sheath");
+  bool has_connector = false;
+  for (const auto& p : pieces) has_connector = has_connector || !p.segment;
+  if (has_connector) parts.push_back("connector");
   Mesh mesh = extrude_section(section, layers, rules, options.order, parts, chambers);
   if (options.half) mesh.node_sets["symmetry"] = mesh.node_sets["plane_y0"];
   mesh.node_sets.erase("plane_y0");
   return mesh;
 }
 
+std::vector<std::string> numbered_chambers(int count) {
+  std::vector<std::string> names;
+  for (int i = 1; i <= count; ++i) names.push_back("chamber " + std::to_string(i));
+  return names;
+}
+
 }  // namespace
 
-Mesh mesh_tca(const TcaDesign& design, const SolidMeshOptions& options) { return mesh_actuators(design, 3, options); }
+Mesh mesh_tca(const TcaDesign& design, const SolidMeshOptions& options) {
+  return mesh_stack({{&design, 0.0, design.actuator.length_mm, 0}}, 3, 3, options, numbered_chambers(3));
+}
 
 Mesh mesh_rra_3d(const RraDesign& design, const SolidMeshOptions& options) {
   TcaDesign lone;
   lone.actuator = design;
-  return mesh_actuators(lone, 1, options);
+  return mesh_stack({{&lone, 0.0, design.length_mm, 0}}, 1, 1, options, numbered_chambers(1));
+}
+
+Mesh mesh_spl(const SplDesign& design, const SolidMeshOptions& options) {
+  // Bottom to top: segment 3, connector 2–3, segment 2, connector 1–2, segment 1, shoulder connector.
+  std::vector<StackPiece> pieces;
+  for (int n = 3; n >= 1; --n) {
+    const auto s = design.segment_extent(n);
+    pieces.push_back({&design.segments[n - 1], s[0], s[1], 3 * (n - 1)});
+    const auto c = design.connector_extent(n - 1);
+    pieces.push_back({nullptr, c[0], c[1], 0});
+  }
+  Mesh mesh = mesh_stack(pieces, 3, 9, options, numbered_chambers(9));
+  // The joints: each segment's end faces (node sets "segment_n_bottom" / "segment_n_top").
+  const double tol = 1e-9 * design.total_length_mm();
+  for (int n = 1; n <= 3; ++n) {
+    const auto s = design.segment_extent(n);
+    for (int k = 0; k < mesh.num_nodes(); ++k) {
+      if (std::abs(mesh.X(k, 2) - s[0]) < tol) mesh.node_sets["segment_" + std::to_string(n) + "_bottom"].push_back(k);
+      if (std::abs(mesh.X(k, 2) - s[1]) < tol) mesh.node_sets["segment_" + std::to_string(n) + "_top"].push_back(k);
+    }
+  }
+  return mesh;
 }
 
 }  // namespace softarm::fem

@@ -11,6 +11,7 @@
 // 4 mm get more).
 #include "fem/mesh/mesh.hpp"
 #include "fem/mesh/rra_design.hpp"
+#include "fem/mesh/spl_design.hpp"
 #include "fem/mesh/tca_design.hpp"
 
 namespace softarm::fem {
@@ -32,5 +33,11 @@ Mesh mesh_tca(const TcaDesign& design, const SolidMeshOptions& options);
 /// A lone RRA along z ∈ [0, l] in 3D: parts "tube", "rings"; chamber 1; node sets
 /// as mesh_tca. The 3D twin of the axisymmetric model with square rings.
 Mesh mesh_rra_3d(const RraDesign& design, const SolidMeshOptions& options);
+
+/// The SPL along z ∈ [0, L] (tip at z = 0, shoulder at z = L): parts "tube", "rings",
+/// "sheath", "connector"; chambers 1–9 (segment n holds 3n − 2 … 3n, chamber 1 of
+/// every segment on the axis at first_axis_angle); node sets "top" (the shoulder),
+/// "bottom" (the tip face), "segment_n_top" and "segment_n_bottom" (n = 1..3: the joints).
+Mesh mesh_spl(const SplDesign& design, const SolidMeshOptions& options);
 
 }  // namespace softarm::fem

@@ -34,10 +34,12 @@ std::vector<std::vector<int>> boundary_faces_in(const Mesh& mesh, const std::vec
   return faces;
 }
 
-FaceMeasure measure_face(const std::vector<std::vector<int>>& facets, const Eigen::VectorXd& x) {
+namespace {
+/// Calls visit(facet, N, p, da) at every 3×3 Gauss point of every 4- or 9-node facet:
+/// shape values N, position p and vector area element da = w x_s × x_t.
+template <class Visit>
+void for_each_facet_point(const std::vector<std::vector<int>>& facets, const Eigen::VectorXd& x, Visit&& visit) {
   constexpr double g = 0.7745966692414834, kPoints[3] = {-g, 0.0, g}, kWeights[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
-  FaceMeasure m;
-  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
   for (const auto& f : facets) {
     const int n = static_cast<int>(f.size());
     for (int i = 0; i < 3; ++i)
@@ -52,12 +54,30 @@ FaceMeasure measure_face(const std::vector<std::vector<int>>& facets, const Eige
           const Eigen::Vector3d xa = x.segment<3>(3 * f[a]);
           p += N[a] * xa, xs += dN_ds[a] * xa, xt += dN_dt[a] * xa;
         }
-        const Eigen::Vector3d da = kWeights[i] * kWeights[j] * xs.cross(xt);
-        m.vector_area += da;
-        m.area += da.norm();
-        first_moment += da.norm() * p;
+        visit(f, N, p, Eigen::Vector3d(kWeights[i] * kWeights[j] * xs.cross(xt)));
       }
   }
+}
+}  // namespace
+
+Eigen::VectorXd nodal_area_weights(const std::vector<std::vector<int>>& facets, const Eigen::VectorXd& x) {
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(x.size() / 3);
+  for_each_facet_point(facets, x, [&](const std::vector<int>& f, const std::array<double, 9>& N, const Eigen::Vector3d&,
+                                      const Eigen::Vector3d& da) {
+    for (std::size_t a = 0; a < f.size(); ++a) w[f[a]] += N[a] * da.norm();
+  });
+  return w;
+}
+
+FaceMeasure measure_face(const std::vector<std::vector<int>>& facets, const Eigen::VectorXd& x) {
+  FaceMeasure m;
+  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
+  for_each_facet_point(facets, x, [&](const std::vector<int>&, const std::array<double, 9>&, const Eigen::Vector3d& p,
+                                      const Eigen::Vector3d& da) {
+    m.vector_area += da;
+    m.area += da.norm();
+    first_moment += da.norm() * p;
+  });
   if (m.area > 0) m.centroid = first_moment / m.area;
   return m;
 }

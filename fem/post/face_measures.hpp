@@ -22,6 +22,10 @@ struct FaceMeasure {
 /// oriented out of their element), as facets in VTK quad order.
 std::vector<std::vector<int>> boundary_faces_in(const Mesh& mesh, const std::vector<int>& node_set);
 
+/// ∫ N_a dA of every node a over the facets at positions x (0 off the face): the
+/// weights that spread a force over a face consistently (a tip mass's weight).
+Eigen::VectorXd nodal_area_weights(const std::vector<std::vector<int>>& facets, const Eigen::VectorXd& x);
+
 /// Measures the facets at positions x (node-major, 3 per node).
 FaceMeasure measure_face(const std::vector<std::vector<int>>& facets, const Eigen::VectorXd& x);
 

@@ -6,7 +6,6 @@
 #include <memory>
 
 #include "fem/assembly/energy_problem.hpp"
-#include "fem/elements/reference_quadrature.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
 #include "fem/forms/gravity_form.hpp"
 #include "fem/mesh/tca_mesher.hpp"
@@ -17,66 +16,12 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 constexpr double kPi = 3.14159265358979323846;
-constexpr double kKgPerMm3PerGcm3 = 1e-6;
 
-Eigen::Matrix3d rotation_z(double angle) { return Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()).toRotationMatrix(); }
-
-/// Rotates every node-major 3-vector block of x about z.
-Vector rotated(const Vector& x, double angle) {
-  const Eigen::Matrix3d R = rotation_z(angle);
-  Vector y(x.size());
-  for (Eigen::Index n = 0; n < x.size() / 3; ++n) y.segment<3>(3 * n) = R * x.segment<3>(3 * n);
-  return y;
-}
-
-/// Clamped top face; the symmetry plane keeps u_y = 0.
-DirichletConstraints tca_constraints(const Mesh& mesh) {
-  DirichletConstraints c;
-  std::vector<char> clamped(mesh.num_nodes(), 0);
-  for (int n : mesh.node_sets.at("top")) {
-    clamped[n] = 1;
-    for (int d = 0; d < 3; ++d) c.fix(3 * n + d);
-  }
-  if (const auto it = mesh.node_sets.find("symmetry"); it != mesh.node_sets.end())
-    for (int n : it->second)
-      if (!clamped[n]) c.fix(3 * n + 1);
-  return c;
-}
-
-std::string fmt(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
 }  // namespace
 
 ModelChoice choose_tca_model(const TcaSceneSpec& spec) {
   const auto& p = spec.chamber_pressure_kPa;
-  const double p_max = std::max({p[0], p[1], p[2]});
-  const Eigen::Vector3d& g = spec.gravity_m_s2;
-  ModelChoice full{"full model", "", false, 0, 0.0};
-  if (!spec.allow_symmetry) {
-    full.reason = "symmetry disabled by the config";
-    return full;
-  }
-  for (int k = 0; k < 3; ++k) {
-    const int i = (k + 1) % 3, j = (k + 2) % 3;
-    const double theta = k * 2 * kPi / 3;
-    const Eigen::Vector3d normal(-std::sin(theta), std::cos(theta), 0);
-    const bool pressures = std::abs(p[i] - p[j]) <= 1e-12 * std::max(1.0, p_max);
-    const bool gravity = std::abs(g.dot(normal)) <= 1e-12 * std::max(1.0, g.norm());
-    if (pressures && gravity) {
-      ModelChoice half{"half model (mirror plane through chamber " + std::to_string(k + 1) + ")", "", true, k + 1, theta};
-      half.reason = "chambers " + std::to_string(i + 1) + " and " + std::to_string(j + 1) + " are at equal pressure (" +
-                    fmt(p[i]) + " kPa) and gravity lies in the plane through the 3CA axis and chamber " +
-                    std::to_string(k + 1) + ": geometry and loads are mirror-symmetric, so half the body carries "
-                    "the whole answer at about half the unknowns";
-      return half;
-    }
-  }
-  full.reason = "no mirror plane carries both the chamber pressures (" + fmt(p[0]) + ", " + fmt(p[1]) + ", " +
-                fmt(p[2]) + " kPa) and gravity";
-  return full;
+  return choose_mirror_model({p[0], p[1], p[2]}, spec.gravity_m_s2, spec.allow_symmetry);
 }
 
 std::optional<double> pressure_at_bending(const std::vector<TcaState>& s, double angle_deg) {
@@ -114,7 +59,7 @@ std::vector<Material> tca_part_materials(const TcaSceneSpec& spec) {
 }
 
 Eigen::Vector3d tca_solver_gravity(const TcaSceneSpec& spec, const ModelChoice& model) {
-  return rotation_z(-model.frame_angle_rad) * spec.gravity_m_s2;
+  return rotation_about_z(-model.frame_angle_rad) * spec.gravity_m_s2;
 }
 
 TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
@@ -131,7 +76,7 @@ TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
   out.element_name = elastic->element_name();
   LoadState load;
   load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
-  EnergyProblem problem(flattened_positions(mesh), tca_constraints(mesh));
+  EnergyProblem problem(flattened_positions(mesh), clamped_with_symmetry(mesh, "top"));
   problem.add_form(elastic);
   const auto& p = spec.chamber_pressure_kPa;
   const double p_max = std::max({p[0], p[1], p[2]});
@@ -152,12 +97,8 @@ TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
   problem.finalize();
   out.dofs = problem.num_dofs();
   const double copies = out.model.half ? 2.0 : 1.0;
-  const auto volumes = part_volumes_mm3(mesh);
-  for (std::size_t i = 0; i < volumes.size(); ++i) {
-    const double kg = copies * volumes[i] * materials[i].density_g_cm3 * kKgPerMm3PerGcm3;
-    out.part_mass_kg.emplace_back(mesh.part_names[i], kg);
-    out.mass_kg += kg;
-  }
+  out.part_mass_kg = part_masses_kg(mesh, materials, copies);
+  for (const auto& [part, kg] : out.part_mass_kg) out.mass_kg += kg;
   out.timings.setup_s = since(t_setup);
 
   // The free face and its rest measures.
@@ -167,7 +108,7 @@ TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
     return out.model.half ? mirror_completed(m) : m;
   };
   const FaceMeasure rest = face(problem.reference_positions());
-  const Eigen::Matrix3d to_user = rotation_z(theta);
+  const Eigen::Matrix3d to_user = rotation_about_z(theta);
   // The 3CA bends away from its pressurised chambers: towards −Σ p_k e_k (e_k the
   // chambers' axis directions, solver frame). The angle is signed by it, so a sag
   // under gravity against the bend reads negative.
@@ -214,17 +155,10 @@ TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
   out.target_pressure_kPa = pressure_at_bending(out.states, spec.target_bending_deg);
 
   out.final_element_results = elastic->element_results(x);
-  for (std::size_t i = 0; i < mesh.part_names.size(); ++i) out.final_peaks.push_back({mesh.part_names[i]});
-  for (int e = 0; e < mesh.num_elements(); ++e) {
-    const auto& r = out.final_element_results[e];
-    PartPeak& peak = out.final_peaks[static_cast<std::size_t>(mesh.part[e])];
-    peak.max_principal_stretch = std::max(peak.max_principal_stretch, r.max_principal_stretch);
-    peak.max_principal_stress_MPa = std::max(peak.max_principal_stress_MPa, r.max_principal_cauchy_MPa);
-    peak.max_principal_log_strain = std::max(peak.max_principal_log_strain, r.max_principal_log_strain);
-  }
+  out.final_peaks = part_peaks(mesh, out.final_element_results);
   // Report in the user frame.
-  out.final_positions = rotated(x, theta);
-  const Vector X_user = rotated(flattened_positions(mesh), theta);
+  out.final_positions = rotated_about_z(x, theta);
+  const Vector X_user = rotated_about_z(flattened_positions(mesh), theta);
   for (int n = 0; n < mesh.num_nodes(); ++n) mesh.X.row(n) = X_user.segment<3>(3 * n).transpose();
   out.mesh = std::move(mesh);
   out.timings.total_s = since(t_start);

@@ -30,6 +30,7 @@
 #include "fem/mesh/mesh.hpp"
 #include "fem/mesh/tca_design.hpp"
 #include "fem/scenes/pressure_path.hpp"
+#include "fem/scenes/solid_scene_support.hpp"
 
 namespace softarm::fem {
 
@@ -48,15 +49,6 @@ struct TcaSceneSpec {
   LimitPointSettings limit;
 };
 
-/// Which model the scene was solved on, and why.
-struct ModelChoice {
-  std::string name;      // e.g. "half model (symmetry plane through chamber 1)"
-  std::string reason;
-  bool half = false;
-  int mirror_chamber = 0;          // 1–3 when half
-  double frame_angle_rad = 0;      // solver frame = user frame rotated by −this about z
-};
-
 struct TcaState {
   double pressure_kPa = 0;             // of the most pressurised chamber
   double bending_angle_deg = 0;        // signed: > 0 away from the pressurised chambers
@@ -65,11 +57,6 @@ struct TcaState {
   double chamber_volume_mm3 = 0;       // Σ f_i V_i over the loaded chambers (full model)
   int newton_iterations = 0;
   bool is_output = false;
-};
-
-struct PartPeak {
-  std::string part;
-  double max_principal_stretch = 1, max_principal_stress_MPa = 0, max_principal_log_strain = 0;
 };
 
 struct SceneTimings {

@@ -1,9 +1,28 @@
 #include "fem/solver/linear_solver.hpp"
 
+#include <dlfcn.h>
+
 #include <chrono>
+
+#include "fem/core/parallel.hpp"
 
 namespace softarm::fem {
 namespace {
+/// Gives the BLAS as many threads as softarm may use (--threads, SOFTARM_THREADS).
+/// A threaded OpenBLAS otherwise takes every core, and when other processes want
+/// them too (ctest -j2, two runs at once) its spinning threads thrash: a 3CA run
+/// next to a compiler spent half its time in the kernel. Looked up at run time, so
+/// any BLAS links (reference BLAS has no threads to set).
+void match_blas_threads() {
+  using SetThreads = void (*)(int);
+  static const auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  static int applied = 0;
+  if (set && applied != thread_count()) {
+    applied = thread_count();
+    set(applied);
+  }
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -79,6 +98,7 @@ bool LinearSolver::cholesky_factorize(Chol& c, const SparseMatrix& K) {
 }
 
 LinearSolver::Status LinearSolver::factorize(const SparseMatrix& K) {
+  match_blas_threads();
   ++factorizations;
   if (options_.upper ? cholesky_factorize(cholesky_upper_, K) : cholesky_factorize(cholesky_, K))
     return status_ = Status::positive_definite;

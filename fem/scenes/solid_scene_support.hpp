@@ -1,0 +1,59 @@
+#pragma once
+// What the 3D actuator scenes (3CA, SPL) share: the choice between a half and a
+// full model, the supports, the frame rotation, per-part peaks and masses, and
+// the measures of a deformed face (position and orientation of a joint or tip).
+#include <Eigen/Core>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "fem/assembly/energy_problem.hpp"
+#include "fem/forms/elastic_form.hpp"
+#include "fem/materials/material.hpp"
+#include "fem/mesh/mesh.hpp"
+
+namespace softarm::fem {
+
+/// Which model a scene is solved on, and why.
+struct ModelChoice {
+  std::string name;      // e.g. "half model (mirror plane through chamber 1)"
+  std::string reason;
+  bool half = false;
+  int mirror_chamber = 0;          // 1–3 when half (the same in every segment)
+  double frame_angle_rad = 0;      // solver frame = user frame rotated by −this about z
+};
+
+/// A half model on the plane through the arm's axis and chamber k (k = 1..3, axes at
+/// (k − 1)·120°, the same in every segment) when, in every segment, the other two
+/// chambers are at equal pressure and gravity lies in that plane; else the full model.
+/// `pressures_kPa` holds 3 entries per segment.
+ModelChoice choose_mirror_model(const std::vector<double>& pressures_kPa, const Eigen::Vector3d& gravity_m_s2,
+                                bool allow_symmetry);
+
+Eigen::Matrix3d rotation_about_z(double angle);
+/// Rotates every node-major 3-vector block of x about z.
+Vector rotated_about_z(const Vector& x, double angle);
+
+/// The node set `clamped` fixed in all directions; the "symmetry" set (if any) keeps u_y = 0.
+DirichletConstraints clamped_with_symmetry(const Mesh& mesh, const std::string& clamped);
+
+struct PartPeak {
+  std::string part;
+  double max_principal_stretch = 1, max_principal_stress_MPa = 0, max_principal_log_strain = 0;
+};
+std::vector<PartPeak> part_peaks(const Mesh& mesh, const std::vector<ElementResult>& results);
+
+/// Mass of each part (kg), `copies` times the mesh's (2 for a half model).
+std::vector<std::pair<std::string, double>> part_masses_kg(const Mesh& mesh, const std::vector<Material>& materials,
+                                                           double copies);
+
+/// Position and orientation of a face: the centroid, and the rotation that best maps
+/// its nodes' rest positions (about their centroid) onto the current ones (Kabsch).
+struct FacePose {
+  Eigen::Vector3d position_mm = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  double tilt_deg = 0;   // angle between the face's axis (z at rest) now and at rest
+};
+FacePose face_pose(const std::vector<int>& nodes, const Vector& rest, const Vector& now);
+
+}  // namespace softarm::fem
