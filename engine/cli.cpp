@@ -6,6 +6,7 @@
 #include "engine/material_command.hpp"
 #include "engine/rra_report.hpp"
 #include "engine/scene_config.hpp"
+#include "engine/spl_report.hpp"
 #include "engine/tca_report.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/core/json_reader.hpp"
@@ -23,6 +24,15 @@ int simulate_tca(const SceneConfig& config) {
   return result.path.outcome == fem::PathOutcome::stalled ? 1 : 0;
 }
 
+int simulate_spl(const SceneConfig& config) {
+  const fem::ModelChoice model = fem::choose_spl_model(config.spl);
+  std::cout << "model: " << model.name << " (" << model.reason << ")\n";
+  SplCurveWriter writer(config.output.directory, std::cout);
+  const auto result = fem::run_spl_scene(config.spl, [&](const fem::SplState& s) { writer.add(s); });
+  write_spl_summary(config, result, std::cout);
+  return result.path.outcome == fem::PathOutcome::stalled ? 1 : 0;
+}
+
 int simulate(const std::string& file, const std::string& output_override, int mesh_level_override) {
   SceneConfig config = load_scene_config(file);
   if (!output_override.empty()) config.output.directory = output_override;
@@ -30,6 +40,7 @@ int simulate(const std::string& file, const std::string& output_override, int me
   std::cout << "softarm simulate: " << file << " (scene " << config.scene << ", mesh level " << config.mesh_level()
             << ", threads " << fem::thread_count() << ")\n";
   if (config.scene == "tca") return simulate_tca(config);
+  if (config.scene == "spl") return simulate_spl(config);
   RraCurveWriter writer(config.output.directory, std::cout);
   const auto result = fem::run_rra_scene(config.rra, [&](const fem::RraCurvePoint& p) { writer.add(p); });
   write_rra_summary(config, result, std::cout);

@@ -1,6 +1,7 @@
 #include "engine/scene_config.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "fem/core/json_reader.hpp"
 
@@ -96,6 +97,8 @@ fem::RraSceneSpec read_rra(JsonReader& root) {
   return spec;
 }
 
+std::optional<Eigen::Vector3d> read_vector3(JsonReader& r, const std::string& key, const std::string& doc);
+
 fem::TcaSceneSpec read_tca(JsonReader& root) {
   fem::TcaSceneSpec spec;
   auto geometry = root.object("geometry", "3CA geometry: the RRA keys plus spacing, sheath and centre hole");
@@ -127,14 +130,59 @@ fem::TcaSceneSpec read_tca(JsonReader& root) {
   std::copy(pressures.begin(), pressures.end(), spec.chamber_pressure_kPa.begin());
   const double p_max = *std::max_element(pressures.begin(), pressures.end());
   spec.output_pressures_kPa = read_output_pressures(load, p_max);
-  const auto g = load.number_list("gravity_m_s2", Range{},
-                                  "gravity vector (m/s²) in the 3CA frame: z along the axis towards the fixed top, "
-                                  "chamber 1 on +x; absent or [0, 0, 0]: off");
-  if (!g.empty() && g.size() != 3)
-    throw InputError(load.field("gravity_m_s2"), "needs three components (x, y, z), got " + std::to_string(g.size()));
-  if (g.size() == 3) spec.gravity_m_s2 = Eigen::Vector3d(g[0], g[1], g[2]);
+  if (auto g = read_vector3(load, "gravity_m_s2", "gravity vector (m/s²) in the 3CA frame: z along the axis towards "
+                                                  "the fixed top, chamber 1 on +x; absent or [0, 0, 0]: off"))
+    spec.gravity_m_s2 = *g;
   spec.target_bending_deg = load.number("target_bending_deg", 90, Range::open(0, 180),
                                         "bending angle whose pressure is reported (deg)");
+  load.finish();
+  read_solver(root.object("solver", "nonlinear solver controls"), spec.newton, spec.steps, spec.limit);
+  return spec;
+}
+
+/// An optional 3-vector (m/s²).
+std::optional<Eigen::Vector3d> read_vector3(JsonReader& r, const std::string& key, const std::string& doc) {
+  const auto v = r.number_list(key, Range{}, doc);
+  if (v.empty()) return std::nullopt;
+  if (v.size() != 3) throw InputError(r.field(key), "needs three components (x, y, z), got " + std::to_string(v.size()));
+  return Eigen::Vector3d(v[0], v[1], v[2]);
+}
+
+fem::SplSceneSpec read_spl(JsonReader& root) {
+  fem::SplSceneSpec spec;
+  auto geometry = root.object("geometry", "SPL geometry: taper ratio, distal radius, connectors, 3CA and RRA keys");
+  spec.design = fem::read_spl_design(geometry);
+  geometry.finish();
+
+  auto materials = root.object("materials", "materials by part: a built-in name or a material object");
+  spec.tube_material = read_material(materials, "tube", "dragon_skin_30");
+  spec.ring_material = read_material(materials, "rings", "digital_abs");
+  spec.sheath_material = read_material(materials, "sheath", "dragon_skin_30");
+  spec.connector_material = read_material(materials, "connector", "digital_abs");
+  materials.finish();
+
+  auto mesh = root.object("mesh", "discretisation");
+  read_mesh(mesh, spec.mesh_level, spec.element_order, 2,
+            "1: trilinear Hex8/P0 (a quick preview: locks in bending); 2: triquadratic Hex27/P1");
+  mesh.finish();
+  auto model = root.object("model", "model reduction");
+  spec.allow_symmetry = model.choice("symmetry", "auto", {"auto", "off"},
+                                     "auto: solve a half model when pressures and gravity are mirror-symmetric") == "auto";
+  model.finish();
+
+  auto load = root.object("load", "loading");
+  const auto pressures = load.number_list("chamber_pressures_kPa", Range::non_negative(),
+                                          "peak pressure of chambers 1–9 (segment n: 3n−2 … 3n), kPa, ramped together");
+  if (pressures.size() != 9)
+    throw InputError(load.field("chamber_pressures_kPa"),
+                     "needs nine pressures (chambers 1–9), got " + std::to_string(pressures.size()));
+  std::copy(pressures.begin(), pressures.end(), spec.chamber_pressure_kPa.begin());
+  if (auto g = read_vector3(load, "gravity_m_s2", "gravity vector (m/s²): z along the arm towards the shoulder; "
+                                                  "default [0, 0, -9.80665], the arm hanging"))
+    spec.gravity_m_s2 = *g;
+  spec.tip_mass_kg = load.number("tip_mass_kg", 0, Range::non_negative(), "payload carried by the tip face (kg)");
+  const int count = load.integer("output_count", 10, Range::closed(1, 10000), "evenly spaced output load levels");
+  for (int i = 1; i <= count; ++i) spec.output_levels.push_back(static_cast<double>(i) / count);
   load.finish();
   read_solver(root.object("solver", "nonlinear solver controls"), spec.newton, spec.steps, spec.limit);
   return spec;
@@ -145,10 +193,13 @@ fem::TcaSceneSpec read_tca(JsonReader& root) {
 SceneConfig read_scene_config(const nlohmann::json& document) {
   JsonReader root(document, "");
   SceneConfig config;
-  config.scene = root.choice("scene", "rra", {"rra", "tca"},
-                             "which assembly to simulate: rra (ring-reinforced actuator), tca (three-chambered actuator)");
+  config.scene = root.choice("scene", "rra", {"rra", "tca", "spl"},
+                             "which assembly to simulate: rra (ring-reinforced actuator), tca (three-chambered "
+                             "actuator), spl (the Soft Poly-Limb arm)");
   if (config.scene == "tca")
     config.tca = read_tca(root);
+  else if (config.scene == "spl")
+    config.spl = read_spl(root);
   else
     config.rra = read_rra(root);
   auto output = root.object("output", "where results go");

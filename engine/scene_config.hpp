@@ -6,6 +6,7 @@
 #include <string>
 
 #include "fem/scenes/rra_scene.hpp"
+#include "fem/scenes/spl_scene.hpp"
 #include "fem/scenes/tca_scene.hpp"
 
 namespace softarm::engine {
@@ -19,9 +20,10 @@ struct SceneConfig {
   std::string scene;               // "rra" or "tca"
   fem::RraSceneSpec rra;           // scene "rra"
   fem::TcaSceneSpec tca;           // scene "tca"
+  fem::SplSceneSpec spl;           // scene "spl"
   OutputSpec output;
   bool verbose = false;
-  int& mesh_level() { return scene == "tca" ? tca.mesh_level : rra.mesh_level; }
+  int& mesh_level() { return scene == "tca" ? tca.mesh_level : scene == "spl" ? spl.mesh_level : rra.mesh_level; }
 };
 
 /// Reads a scene file (the whole document); throws fem::InputError naming the field.

@@ -1,0 +1,103 @@
+#include "engine/spl_report.hpp"
+
+#include <Eigen/Geometry>
+#include <iomanip>
+
+#include "engine/output_files.hpp"
+#include "fem/io/vtu_writer.hpp"
+
+namespace softarm::engine {
+namespace {
+nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json pose_json(const fem::FacePose& pose) {
+  const Eigen::AngleAxisd aa(pose.rotation);
+  return {{"position_mm", vector_json(pose.position_mm)},
+          {"axis_tilt_deg", pose.tilt_deg},
+          {"rotation_axis", vector_json(aa.axis())},
+          {"rotation_angle_deg", aa.angle() * 180 / 3.14159265358979323846},
+          {"rotation_matrix", {{pose.rotation(0, 0), pose.rotation(0, 1), pose.rotation(0, 2)},
+                               {pose.rotation(1, 0), pose.rotation(1, 1), pose.rotation(1, 2)},
+                               {pose.rotation(2, 0), pose.rotation(2, 1), pose.rotation(2, 2)}}}};
+}
+}  // namespace
+
+SplCurveWriter::SplCurveWriter(const std::string& directory, std::ostream& out)
+    : csv_(open_output_file(directory, "curve.csv")), out_(out) {
+  csv_ << "load_fraction,tip_x_mm,tip_y_mm,tip_z_mm,tip_tilt_deg,newton_iterations\n";
+  out_ << "  load_fraction   tip_x_mm   tip_y_mm   tip_z_mm  tip_tilt_deg  newton\n";
+}
+
+void SplCurveWriter::add(const fem::SplState& s) {
+  const auto& p = s.tip_position_mm;
+  csv_ << std::setprecision(10) << s.load_fraction << ',' << p.x() << ',' << p.y() << ',' << p.z() << ','
+       << s.tip_tilt_deg << ',' << s.newton_iterations << '\n';
+  csv_.flush();
+  out_ << std::fixed << std::setprecision(3) << std::setw(15) << s.load_fraction << std::setw(11) << p.x()
+       << std::setw(11) << p.y() << std::setw(11) << p.z() << std::setw(14) << s.tip_tilt_deg << std::setw(8)
+       << s.newton_iterations << std::endl;
+}
+
+nlohmann::json write_spl_summary(const SceneConfig& config, const fem::SplResult& r, std::ostream& out) {
+  const auto& spec = config.spl;
+  const auto& dir = config.output.directory;
+  nlohmann::json joints = nlohmann::json::array(), peaks = nlohmann::json::object(), mass = nlohmann::json::object();
+  for (const auto& j : r.joints) {
+    auto entry = pose_json(j.pose);
+    entry["joint"] = j.name;
+    joints.push_back(entry);
+  }
+  for (const auto& p : r.final_peaks)
+    peaks[p.part] = {{"max_principal_stretch", p.max_principal_stretch},
+                     {"max_principal_stress_MPa", p.max_principal_stress_MPa}};
+  for (const auto& [part, kg] : r.part_mass_kg) mass[part] = kg;
+  mass["total"] = r.mass_kg;
+  nlohmann::json summary = {
+      {"scene", "spl"},
+      {"model", {{"name", r.model.name}, {"reason", r.model.reason}, {"element", r.element_name}}},
+      {"design", fem::to_json(spec.design)},
+      {"load", {{"chamber_pressures_kPa", spec.chamber_pressure_kPa}, {"gravity_m_s2", vector_json(spec.gravity_m_s2)},
+                {"tip_mass_kg", spec.tip_mass_kg}}},
+      {"mesh", {{"level", spec.mesh_level}, {"element_order", spec.element_order}, {"elements", r.mesh.num_elements()},
+                {"nodes", r.mesh.num_nodes()}, {"dofs", r.dofs}}},
+      {"outcome", fem::to_string(r.path.outcome)},
+      {"diagnosis", r.path.diagnosis},
+      {"reached_load_fraction", r.curve.empty() ? 0.0 : r.curve.back().load_fraction},
+      {"joints", joints},
+      {"mass_kg", mass},
+      {"final_peaks", peaks},
+      {"solver", {{"load_steps", r.path.path.stats.steps}, {"newton_iterations", r.path.path.stats.newton_iterations},
+                  {"cutbacks", r.path.path.stats.cutbacks}, {"factorizations", r.path.factorizations}}},
+      {"time_s", {{"mesh", r.timings.mesh_s}, {"setup", r.timings.setup_s}, {"solve", r.timings.solve_s},
+                  {"assembly", r.timings.assembly_s}, {"factorize", r.path.factorize_s}, {"total", r.timings.total_s}}}};
+  write_json_file(dir, "summary.json", summary);
+  if (config.output.vtu) {
+    Eigen::MatrixXd x(r.mesh.num_nodes(), 3);
+    for (int n = 0; n < r.mesh.num_nodes(); ++n) x.row(n) = r.final_positions.segment<3>(3 * n).transpose();
+    std::vector<double> stretch, stress;
+    for (const auto& e : r.final_element_results) {
+      stretch.push_back(e.max_principal_stretch);
+      stress.push_back(e.max_principal_cauchy_MPa);
+    }
+    fem::write_vtu(dir + "/deformed.vtu", r.mesh, x, {},
+                   {{"max_principal_stretch", 1, stretch}, {"max_principal_cauchy_stress_MPa", 1, stress}});
+  }
+  out << "\noutcome: " << fem::to_string(r.path.outcome) << " — " << r.path.diagnosis << "\n"
+      << "joints (user frame: z along the arm, shoulder at the top):\n"
+      << "  joint                               x_mm       y_mm       z_mm   tilt_deg\n";
+  for (const auto& j : r.joints)
+    out << "  " << std::left << std::setw(32) << j.name << std::right << std::fixed << std::setprecision(2)
+        << std::setw(11) << j.pose.position_mm.x() << std::setw(11) << j.pose.position_mm.y() << std::setw(11)
+        << j.pose.position_mm.z() << std::setw(11) << j.pose.tilt_deg << "\n";
+  out << std::setprecision(1) << "mass: " << 1e3 * r.mass_kg << " g (";
+  for (std::size_t i = 0; i < r.part_mass_kg.size(); ++i)
+    out << (i ? ", " : "") << r.part_mass_kg[i].first << " " << 1e3 * r.part_mass_kg[i].second << " g";
+  out << ")\nmodel: " << r.model.name << " — " << r.model.reason << "\n       " << r.element_name << ", "
+      << r.mesh.num_elements() << " elements, " << r.dofs << " dofs; " << r.path.path.stats.steps << " load steps, "
+      << r.path.path.stats.newton_iterations << " Newton iterations, " << r.timings.total_s << " s\n"
+      << "written: " << dir << "/curve.csv, " << dir << "/summary.json"
+      << (config.output.vtu ? ", " + dir + "/deformed.vtu" : "") << "\n";
+  return summary;
+}
+
+}  // namespace softarm::engine

@@ -1,0 +1,25 @@
+#pragma once
+// Writes the SPL scene's results: the tip's path as CSV row by row, a JSON
+// summary with every joint's position and orientation, mass and peaks, the
+// deformed mesh as VTU, and the joint table on stdout.
+#include <fstream>
+#include <ostream>
+#include <string>
+
+#include "engine/scene_config.hpp"
+
+namespace softarm::engine {
+
+class SplCurveWriter {
+ public:
+  SplCurveWriter(const std::string& directory, std::ostream& out);
+  void add(const fem::SplState& state);
+
+ private:
+  std::ofstream csv_;
+  std::ostream& out_;
+};
+
+nlohmann::json write_spl_summary(const SceneConfig& config, const fem::SplResult& result, std::ostream& out);
+
+}  // namespace softarm::engine
