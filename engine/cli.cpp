@@ -63,13 +63,16 @@ int export_deck(const std::string& file, const std::string& deck_path, double pr
   return 0;
 }
 
-void print_schema() {
+void print_schema(const std::string& scene) {
   // Reading a complete default scene registers every field with its documentation.
-  nlohmann::json probe = {{"scene", "rra"},
-                          {"geometry", {{"wall_thickness_normalised", 0.466}, {"end_cap_thickness_normalised", 0.25},
-                                        {"ring_count_normalised", 0.375}, {"ring_thickness_normalised", 0.4}}},
-                          {"load", {{"max_pressure_kPa", 206.8}}}};
+  const nlohmann::json rra_sizes = {{"wall_thickness_normalised", 0.466}, {"end_cap_thickness_normalised", 0.25},
+                                    {"ring_count_normalised", 0.375}, {"ring_thickness_normalised", 0.4}};
+  nlohmann::json probe = {{"scene", scene}, {"geometry", rra_sizes}};
+  if (scene == "rra") probe["load"] = {{"max_pressure_kPa", 206.8}};
+  if (scene == "tca") probe["load"] = {{"chamber_pressures_kPa", {0, 344.7, 344.7}}};
+  if (scene == "spl") probe["load"] = {{"chamber_pressures_kPa", {0, 345, 345, 0, 86, 345, 0, 0, 59}}};
   read_scene_config(probe);
+  std::cout << "scene \"" << scene << "\" config keys:\n";
   for (const auto& f : fem::JsonReader::documented_fields())
     std::cout << f.path << "  (" << f.type << ", default " << f.default_value
               << (f.range.empty() ? "" : ", valid " + f.range) << ")\n    " << f.doc << "\n";
@@ -100,6 +103,9 @@ int run_cli(int argc, char** argv) {
   exp->add_option("--mesh-level", mesh_level, "mesh refinement level (overrides mesh.level)");
 
   auto* schema = app.add_subcommand("schema", "list every scene-config key with its unit, default and valid range");
+  std::string schema_scene = "rra";
+  schema->add_option("--scene", schema_scene, "which scene's keys: rra, tca or spl (default rra)")
+      ->check(CLI::IsMember({"rra", "tca", "spl"}));
   add_material_command(app);
 
   try {
@@ -115,7 +121,7 @@ int run_cli(int argc, char** argv) {
     if (*sim) return simulate(scene_file, output_dir, mesh_level);
     if (*exp) return export_deck(scene_file, deck_path, deck_pressure_kPa, mesh_level);
     if (*schema) {
-      print_schema();
+      print_schema(schema_scene);
       return 0;
     }
   } catch (const fem::InputError& e) {

@@ -95,15 +95,24 @@ std::vector<std::pair<std::string, double>> part_masses_kg(const Mesh& mesh, con
   return masses;
 }
 
-FacePose face_pose(const std::vector<int>& nodes, const Vector& rest, const Vector& now) {
+FacePose face_pose(const std::vector<int>& nodes, const Vector& rest, const Vector& now, bool mirrored) {
+  std::vector<Eigen::Vector3d> P, Q;  // rest and current points
+  for (int n : nodes) {
+    P.push_back(rest.segment<3>(3 * n));
+    Q.push_back(now.segment<3>(3 * n));
+    if (mirrored && std::abs(P.back().y()) > 1e-9 * (1 + P.back().norm())) {  // nodes on the plane are their own image
+      P.emplace_back(P.back().x(), -P.back().y(), P.back().z());
+      Q.emplace_back(Q.back().x(), -Q.back().y(), Q.back().z());
+    }
+  }
   FacePose pose;
   Eigen::Vector3d c0 = Eigen::Vector3d::Zero(), c1 = Eigen::Vector3d::Zero();
-  for (int n : nodes) c0 += rest.segment<3>(3 * n), c1 += now.segment<3>(3 * n);
-  c0 /= static_cast<double>(nodes.size());
-  c1 /= static_cast<double>(nodes.size());
+  for (std::size_t i = 0; i < P.size(); ++i) c0 += P[i], c1 += Q[i];
+  c0 /= static_cast<double>(P.size());
+  c1 /= static_cast<double>(P.size());
   // Kabsch: R = V diag(1, 1, det) Uᵀ from the SVD of H = Σ (X − c0)(x − c1)ᵀ.
   Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
-  for (int n : nodes) H += (rest.segment<3>(3 * n) - c0) * (now.segment<3>(3 * n) - c1).transpose();
+  for (std::size_t i = 0; i < P.size(); ++i) H += (P[i] - c0) * (Q[i] - c1).transpose();
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
   D(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;

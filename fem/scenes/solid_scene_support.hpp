@@ -54,6 +54,8 @@ struct FacePose {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   double tilt_deg = 0;   // angle between the face's axis (z at rest) now and at rest
 };
-FacePose face_pose(const std::vector<int>& nodes, const Vector& rest, const Vector& now);
+/// `mirrored`: the nodes are the y ≥ 0 half of a face symmetric about y = 0 (half
+/// models); their mirror images complete it.
+FacePose face_pose(const std::vector<int>& nodes, const Vector& rest, const Vector& now, bool mirrored = false);
 
 }  // namespace softarm::fem

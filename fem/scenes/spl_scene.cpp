@@ -84,7 +84,7 @@ SplResult run_spl_scene(const SplSceneSpec& spec, const std::function<void(const
   const Eigen::Matrix3d to_user = rotation_about_z(theta);
   const auto tip_nodes = mesh.node_sets.at("bottom");
   const auto user_pose = [&](const std::vector<int>& nodes, const Vector& x) {
-    FacePose pose = face_pose(nodes, X, x);
+    FacePose pose = face_pose(nodes, X, x, out.model.half);
     pose.position_mm = to_user * pose.position_mm;
     pose.rotation = to_user * pose.rotation * to_user.transpose();
     return pose;

@@ -1,0 +1,86 @@
+// Benchmark (not a test): the thesis 3CA bending scene at chosen mesh levels
+// and element orders. Each run is a separate process (fork) so that its peak
+// memory is its own. For each: model (half/full), DOFs, load steps, Newton
+// iterations, factorisations, time in assembly / factorisation and in total,
+// peak memory, the pressure reaching the target bending angle and the bending
+// angle and tip position at the peak pressure.
+//
+// Usage: bench_tca_levels [config] [--runs 1:2,1:1,2:1 (order:level)] [--repeat N] [--threads T]
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "engine/scene_config.hpp"
+#include "fem/core/parallel.hpp"
+
+using namespace softarm;
+
+namespace {
+double peak_memory_MiB() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024.0;
+}
+
+void run_one(fem::TcaSceneSpec spec, int order, int level, int repeat) {
+  spec.element_order = order;
+  spec.mesh_level = level;
+  std::vector<double> totals;
+  fem::TcaResult r;
+  for (int k = 0; k < repeat; ++k) {
+    r = fem::run_tca_scene(spec);
+    totals.push_back(r.timings.total_s);
+  }
+  std::sort(totals.begin(), totals.end());
+  const auto& last = r.curve.back();
+  std::printf("%5s %5d %-5s %8d %5d %6d %6d %9.2f %9.2f %9.2f %8.0f %10s %9.3f %9.2f %8.2f %8.2f  %s\n",
+              order == 2 ? "Hex27" : "Hex8", level, r.model.half ? "half" : "full", r.dofs, r.path.path.stats.steps,
+              r.path.path.stats.newton_iterations, r.path.factorizations, r.timings.assembly_s, r.timings.factorize_s,
+              totals[totals.size() / 2], peak_memory_MiB(),
+              r.target_pressure_kPa ? std::to_string(*r.target_pressure_kPa).substr(0, 7).c_str() : "-",
+              last.bending_angle_deg, last.pressure_kPa, last.tip_position_mm.x(), last.tip_position_mm.z(),
+              fem::to_string(r.path.outcome));
+  std::fflush(stdout);
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string config = "configs/tca_thesis.json", runs = "2:1";
+  int repeat = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--runs" && i + 1 < argc) runs = argv[++i];
+    else if (a == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
+    else if (a == "--threads" && i + 1 < argc) fem::set_thread_count(std::atoi(argv[++i]));
+    else config = a;
+  }
+  const auto scene = engine::load_scene_config(config);
+  if (scene.scene != "tca") {
+    std::fprintf(stderr, "bench_tca_levels: %s is not a tca scene\n", config.c_str());
+    return 2;
+  }
+  std::printf("%s, threads %d, time = median of %d\n", config.c_str(), fem::thread_count(), repeat);
+  std::printf("%5s %5s %-5s %8s %5s %6s %6s %9s %9s %9s %8s %10s %9s %9s %8s %8s  %s\n", "elem", "level", "model",
+              "dofs", "steps", "newton", "factor", "assemb_s", "factor_s", "total_s", "peak_MiB", "p_target",
+              "angle_deg", "at_kPa", "tip_x", "tip_z", "outcome");
+  std::stringstream list(runs);
+  std::string item;
+  while (std::getline(list, item, ',')) {
+    const int order = std::atoi(item.c_str()), level = std::atoi(item.c_str() + item.find(':') + 1);
+    const pid_t child = fork();
+    if (child == 0) {
+      run_one(scene.tca, order, level, repeat);
+      std::_Exit(0);
+    }
+    int status = 0;
+    waitpid(child, &status, 0);
+  }
+  return 0;
+}
