@@ -1,0 +1,305 @@
+// softarm vs CalculiX (ccx 2.20, SPOOLES) wall time on the same 3D actuator
+// meshes: a short three-chambered actuator (3CA, half model, chambers 2 and 3
+// pressurised) and a lone RRA (half model), Hex27/H2P1 in softarm, C3D20R in
+// ccx (the export of fem/scenes/tca_export.hpp), neo-Hookean silicone with
+// Dragon Skin 30's initial moduli and digital-ABS rings, one pressure.
+//
+// Matched work: both engines take the same fixed load increments (--increments,
+// default 4: ccx's *STATIC initial = maximum increment = 1/n; softarm's
+// StepSettings initial = maximum = 1/n) and the same number of threads
+// (--threads, default 1: softarm's thread count, ccx's CCX_NPROC_* and
+// OMP_NUM_THREADS). Tolerances: ccx's default residual control (largest
+// residual force ≤ R_n = 0.005 of the time-averaged mean force, and correction
+// ≤ C_n = 0.01 of the increment's displacement) is far looser than softarm's
+// default (2-norm residual ≤ 1e-8 of the load's force scale, and update ≤ 1e-6).
+// Each size is therefore timed three ways: softarm at its default, softarm at
+// --loose-tol (default 5e-3, update 1e-2: the order of ccx's defaults), and ccx
+// at its defaults; with the variant ccx-tight also ccx with *CONTROLS, PARAMETERS=FIELD
+// R_n = 1e-6, C_n = 1e-5 (softarm-like). The answers (mean free-face
+// displacement over the nodes both engines have) are printed next to the times.
+//
+// Usage: bench_ccx_3d [--scene tca|rra|both] [--levels 1,2] [--lengths 32,64]
+//                     [--pressure-kPa 15] [--repeat 3] [--threads 1]
+//                     [--increments 4] [--loose-tol 5e-3]
+//                     [--variants strict,loose,ccx,ccx-tight]   (ratio: time / the first variant's)
+// Medians over --repeat runs are printed (this machine is shared and noisy).
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fem/core/parallel.hpp"
+#include "fem/forms/chamber_pressure_form.hpp"
+#include "fem/forms/elastic_form.hpp"
+#include "fem/materials/neo_hookean.hpp"
+#include "fem/mesh/tca_mesher.hpp"
+#include "fem/scenes/tca_export.hpp"
+#include "fem/scenes/tca_scene.hpp"
+#include "fem/solver/load_stepper.hpp"
+
+using namespace softarm::fem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+Material silicone() {  // Dragon Skin 30's initial moduli: μ0 = 0.1153 MPa, D1 = 0.7029/MPa
+  Material m;
+  m.name = "neo_hookean_ds30";
+  m.law = std::make_shared<NeoHookean>(0.1153 / 2, VolumetricPolynomial({0.7029}));
+  m.density_g_cm3 = 1.08;
+  return m;
+}
+
+/// A short RRA with the thesis cross-section and ring pitch (l/n_r = 16/3 mm).
+RraDesign short_rra(double length_mm) {
+  RraDesign d;
+  d.length_mm = length_mm;
+  d.top_radius_mm = 9 + 3 * length_mm / 160;  // the thesis taper
+  d.ring_count = std::max(1, static_cast<int>(std::lround(length_mm * 30 / 160)));
+  d.ring_diameter_mm = 0.4 * length_mm / d.ring_count;
+  d.ring_section = RraDesign::RingSection::square;
+  return d;
+}
+
+struct Answer {
+  int dofs = 0, iterations = 0, increments = 0;
+  double seconds = 0;
+  Eigen::Vector3d u = Eigen::Vector3d::Constant(std::nan(""));
+  bool ok = false;
+};
+
+struct Problem {
+  std::string scene;
+  double length_mm = 32;
+  int level = 1;
+  double pressure_kPa = 15;
+};
+
+TcaSceneSpec tca_spec(const Problem& p, int increments, const NewtonSettings& newton) {
+  TcaSceneSpec spec;
+  spec.design.actuator = short_rra(p.length_mm);
+  spec.tube_material = spec.sheath_material = silicone();
+  spec.ring_material = builtin_material("digital_abs", "bench");
+  spec.mesh_level = p.level;
+  spec.chamber_pressure_kPa = {0, p.pressure_kPa, p.pressure_kPa};
+  spec.output_pressures_kPa = {p.pressure_kPa};
+  spec.steps.initial_increment = spec.steps.max_increment = 1.0 / increments;
+  spec.newton = newton;
+  return spec;
+}
+
+Mesh rra_mesh_of(const Problem& p) { return mesh_rra_3d(short_rra(p.length_mm), {p.level, 2, true, 0}); }
+
+Answer softarm_run(const Problem& p, int increments, const NewtonSettings& newton) {
+  Answer a;
+  if (p.scene == "tca") {
+    const TcaSceneSpec spec = tca_spec(p, increments, newton);
+    const TcaResult r = run_tca_scene(spec);
+    a.seconds = r.timings.setup_s + r.timings.solve_s;  // not the meshing (ccx reads a finished mesh)
+    a.dofs = r.dofs;
+    a.iterations = r.path.path.stats.newton_iterations;
+    a.increments = r.path.path.stats.steps;
+    a.ok = r.path.outcome == PathOutcome::completed;
+    // Back to the solver frame (the same as the user frame here: mirror plane through chamber 1).
+    const Mesh solver_mesh = tca_mesh(spec, r.model);
+    const Eigen::Matrix3d R = rotation_about_z(-r.model.frame_angle_rad);
+    Eigen::VectorXd u = r.final_positions - flattened_positions(r.mesh);
+    for (Eigen::Index n = 0; n < u.size() / 3; ++n) u.segment<3>(3 * n) = R * u.segment<3>(3 * n);
+    a.u = mean_displacement(exported_nodes(solver_mesh, solver_mesh.node_sets.at("bottom")), u);
+    return a;
+  }
+  const Mesh mesh = rra_mesh_of(p);
+  const auto t0 = Clock::now();
+  LoadState load;
+  load.chamber_pressure_MPa = {0.0};
+  EnergyProblem problem(flattened_positions(mesh), actuator_3d_constraints(mesh));
+  problem.add_form(make_elastic_form(mesh, {silicone(), builtin_material("digital_abs", "bench")}));
+  problem.add_form(std::make_shared<ChamberPressureForm>(mesh, 0, load));
+  problem.finalize();
+  Eigen::VectorXd x = problem.reference_positions();
+  LinearSolver solver;
+  StepSettings steps;
+  steps.initial_increment = steps.max_increment = 1.0 / increments;
+  const PathCallbacks cb{[&](double level) { load.chamber_pressure_MPa[0] = level * p.pressure_kPa * 1e-3; }, {}};
+  const PathResult r = follow_load_path(problem, x, solver, {1.0}, cb, newton, steps);
+  a.seconds = since(t0);
+  a.dofs = problem.num_dofs();
+  a.iterations = r.stats.newton_iterations;
+  a.increments = r.stats.steps;
+  a.ok = r.completed;
+  a.u = mean_displacement(exported_nodes(mesh, mesh.node_sets.at("bottom")), x - problem.reference_positions());
+  return a;
+}
+
+Answer ccx_run(const Problem& p, int increments, int threads, bool tight) {
+  Answer a;
+  Mesh mesh;
+  AbaqusDeck deck;
+  TcaSceneSpec spec;
+  if (p.scene == "tca") {
+    spec = tca_spec(p, increments, {});
+    const ModelChoice model = choose_tca_model(spec);
+    mesh = tca_mesh(spec, model);
+    deck = tca_abaqus_deck(spec, mesh, model, 1.0);
+  } else {
+    mesh = rra_mesh_of(p);
+    deck = rra_3d_abaqus_deck(mesh, silicone(), builtin_material("digital_abs", "bench"), p.pressure_kPa);
+  }
+  deck.initial_increment = deck.max_increment = 1.0 / increments;
+  const auto dir = std::filesystem::temp_directory_path() / ("softarm_bench_ccx_3d_" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string inp = (dir / "job.inp").string();
+  write_abaqus_deck(inp, deck);
+  if (tight) {  // *CONTROLS after the *STATIC data line
+    std::ifstream in(inp);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string s = text.str();
+    const auto at = s.find('\n', s.find("*STATIC\n") + 8);
+    // The full line: a partial one zeroes q_0 and q_u (defaults 0.01, 1e-5); the rest are the defaults.
+    s.insert(at + 1, "*CONTROLS, PARAMETERS=FIELD\n1e-6, 1e-5, 0.01, 1e-5, 0.02, 1e-5, 1e-3, 1e-8\n");
+    std::ofstream(inp) << s;
+  }
+  const std::string t = std::to_string(threads);
+  const std::string cmd = "cd " + dir.string() + " && OMP_NUM_THREADS=" + t + " CCX_NPROC_EQUATION_SOLVER=" + t +
+                          " CCX_NPROC_STIFFNESS=" + t + " CCX_NPROC_RESULTS=" + t + " ccx -i job > ccx.log 2>&1";
+  const auto t0 = Clock::now();
+  const int status = std::system(cmd.c_str());
+  a.seconds = since(t0);
+  const auto stats = read_ccx_statistics((dir / "job.sta").string());
+  a.iterations = stats.iterations;
+  a.increments = stats.increments;
+  a.ok = status == 0 && std::abs(stats.reached_time - 1.0) < 1e-9;
+  const auto u = read_ccx_displacements((dir / "job.dat").string());
+  const auto nodes = exported_nodes(mesh, mesh.node_sets.at("bottom"));
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  std::size_t found = 0;
+  for (int n : nodes)
+    if (const auto it = u.find(n); it != u.end()) sum += it->second, ++found;
+  if (found == nodes.size() && found > 0) a.u = sum / static_cast<double>(found);
+  else a.ok = false;
+  // ccx's unknowns before constraints: 3 per node of its elements (no Hex27 face or body centres).
+  std::vector<int> all(static_cast<std::size_t>(mesh.num_nodes()));
+  for (int i = 0; i < mesh.num_nodes(); ++i) all[static_cast<std::size_t>(i)] = i;
+  a.dofs = 3 * static_cast<int>(exported_nodes(mesh, all).size());
+  if (a.ok) std::filesystem::remove_all(dir);
+  else std::fprintf(stderr, "ccx run kept in %s\n", dir.string().c_str());
+  return a;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+std::vector<double> parse_list(const char* s) {
+  std::vector<double> v;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, ',')) v.push_back(std::stod(item));
+  return v;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string scene = "both";
+  std::vector<double> levels{1, 2}, lengths{32};
+  double pressure = 15, loose = 5e-3;
+  int repeat = 3, threads = 1, increments = 4;
+  std::vector<std::string> which{"strict", "loose", "ccx"};
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto next = [&] {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "%s needs a value\n", a.c_str());
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--scene") scene = next();
+    else if (a == "--levels") levels = parse_list(next());
+    else if (a == "--lengths") lengths = parse_list(next());
+    else if (a == "--pressure-kPa") pressure = std::stod(next());
+    else if (a == "--repeat") repeat = std::stoi(next());
+    else if (a == "--threads") threads = std::stoi(next());
+    else if (a == "--increments") increments = std::stoi(next());
+    else if (a == "--loose-tol") loose = std::stod(next());
+    else if (a == "--variants") {
+      which.clear();
+      std::stringstream in(next());
+      for (std::string item; std::getline(in, item, ',');) which.push_back(item);
+    }
+    else {
+      std::fprintf(stderr, "unknown option %s\n", a.c_str());
+      return 2;
+    }
+  }
+  set_thread_count(threads);
+  NewtonSettings strict, relaxed;
+  relaxed.residual_tolerance = loose;
+  relaxed.update_tolerance = 1e-2;
+  std::printf("softarm (Hex27 H2/P1) vs ccx (C3D20R), %g kPa, %d fixed increments, %d thread(s), median of %d\n",
+              pressure, increments, threads, repeat);
+  std::printf("%-5s %6s %5s %8s | %-22s %5s %5s %8s | %-10s %12s %12s %12s\n", "scene", "l_mm", "level", "dofs",
+              "engine", "incr", "iters", "time_s", "ratio", "u_x_mm", "u_y_mm", "u_z_mm");
+  const std::vector<std::string> scenes = scene == "both" ? std::vector<std::string>{"rra", "tca"} : std::vector<std::string>{scene};
+  for (const auto& s : scenes)
+    for (double l : lengths)
+      for (double lv : levels) {
+        const Problem p{s, l, static_cast<int>(lv), pressure};
+        struct Variant {
+          std::string name;
+          std::vector<Answer> runs;
+        };
+        std::vector<Variant> variants;
+        for (const auto& v : which) {
+          if (v == "strict") variants.push_back({"softarm tol 1e-8", {}});
+          else if (v == "loose") variants.push_back({"softarm tol " + std::to_string(loose).substr(0, 6), {}});
+          else if (v == "ccx") variants.push_back({"ccx default", {}});
+          else if (v == "ccx-tight") variants.push_back({"ccx R_n 1e-6", {}});
+          else {
+            std::fprintf(stderr, "unknown variant %s\n", v.c_str());
+            return 2;
+          }
+        }
+        for (int r = 0; r < repeat; ++r)
+          for (std::size_t k = 0; k < variants.size(); ++k) {
+            const std::string& v = which[k];
+            variants[k].runs.push_back(v == "strict"  ? softarm_run(p, increments, strict)
+                                       : v == "loose" ? softarm_run(p, increments, relaxed)
+                                                      : ccx_run(p, increments, threads, v == "ccx-tight"));
+            const Answer& a = variants[k].runs.back();  // each run as it ends (long runs)
+            std::printf("  run %d %-22s %5d iterations %8.2f s  u = (%.5f, %.5f, %.5f) mm%s\n", r + 1,
+                        variants[k].name.c_str(), a.iterations, a.seconds, a.u.x(), a.u.y(), a.u.z(),
+                        a.ok ? "" : "  (FAILED)");
+            std::fflush(stdout);
+          }
+        std::vector<double> medians;
+        for (const auto& v : variants) {
+          std::vector<double> t;
+          for (const auto& a : v.runs) t.push_back(a.seconds);
+          medians.push_back(median(t));
+        }
+        for (std::size_t k = 0; k < variants.size(); ++k) {
+          const Answer& a = variants[k].runs.back();
+          std::printf("%-5s %6.0f %5d %8d | %-22s %5d %5d %8.2f | %-10.2f %12.5f %12.5f %12.5f%s\n", s.c_str(), l,
+                      p.level, a.dofs, variants[k].name.c_str(), a.increments, a.iterations, medians[k],
+                      medians[k] / medians[0], a.u.x(), a.u.y(), a.u.z(), a.ok ? "" : "  (FAILED)");
+        }
+        std::fflush(stdout);
+      }
+  return 0;
+}
