@@ -1,6 +1,7 @@
 #include "engine/cli.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <iostream>
 
 #include "engine/material_command.hpp"
@@ -8,6 +9,7 @@
 #include "engine/scene_config.hpp"
 #include "engine/spl_report.hpp"
 #include "engine/tca_report.hpp"
+#include "fem/scenes/tca_export.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/core/json_reader.hpp"
 #include "fem/core/parallel.hpp"
@@ -33,11 +35,13 @@ int simulate_spl(const SceneConfig& config) {
   return result.path.outcome == fem::PathOutcome::stalled ? 1 : 0;
 }
 
-int simulate(const std::string& file, const std::string& output_override, int mesh_level_override) {
+int simulate(const std::string& file, const std::string& output_override, int mesh_level_override,
+             int element_order_override) {
   SceneConfig config = load_scene_config(file);
   if (!output_override.empty()) config.output.directory = output_override;
   if (mesh_level_override > 0) config.mesh_level() = mesh_level_override;
-  std::cout << "softarm simulate: " << file << " (scene " << config.scene << ", mesh level " << config.mesh_level()
+  if (element_order_override > 0) config.element_order() = element_order_override;
+  std::cout << "softarm simulate: " << file << " (scene " << config.scene << ", mesh level " << config.mesh_level() << ", element order " << config.element_order()
             << ", threads " << fem::thread_count() << ")\n";
   if (config.scene == "tca") return simulate_tca(config);
   if (config.scene == "spl") return simulate_spl(config);
@@ -50,15 +54,32 @@ int simulate(const std::string& file, const std::string& output_override, int me
 
 int export_deck(const std::string& file, const std::string& deck_path, double pressure_kPa, int mesh_level_override) {
   SceneConfig config = load_scene_config(file);
-  if (mesh_level_override > 0) config.rra.mesh_level = mesh_level_override;
-  const double p = pressure_kPa > 0 ? pressure_kPa : config.rra.path.max_pressure_kPa;
-  const fem::Mesh mesh = fem::rra_mesh(config.rra);
+  if (mesh_level_override > 0) config.mesh_level() = mesh_level_override;
+  if (config.scene == "spl")
+    throw fem::InputError("scene", "export writes rra and tca scenes; an SPL deck is not implemented yet");
+  fem::Mesh mesh;
+  fem::AbaqusDeck deck;
+  double p = pressure_kPa;
+  if (config.scene == "tca") {
+    // The model the scene is solved on (half or full), at the peak pressures scaled to --pressure-kPa.
+    const auto& peaks = config.tca.chamber_pressure_kPa;
+    const double p_max = std::max({peaks[0], peaks[1], peaks[2]});
+    if (p <= 0) p = p_max;
+    const fem::ModelChoice model = fem::choose_tca_model(config.tca);
+    mesh = fem::tca_mesh(config.tca, model);
+    deck = fem::tca_abaqus_deck(config.tca, mesh, model, p / p_max);
+    std::cout << "model: " << model.name << "\n";
+  } else {
+    if (p <= 0) p = config.rra.path.max_pressure_kPa;
+    mesh = fem::rra_mesh(config.rra);
+    deck = fem::rra_abaqus_deck(config.rra, mesh, p);
+  }
   try {
-    fem::write_abaqus_deck(deck_path, fem::rra_abaqus_deck(config.rra, mesh, p));
+    fem::write_abaqus_deck(deck_path, deck);
   } catch (const std::invalid_argument& e) {  // unwritable path, or a law with no Abaqus card
     throw fem::InputError("--output", e.what());
   }
-  std::cout << "wrote " << deck_path << ": " << mesh.num_elements() << " elements, chamber pressure " << p
+  std::cout << "wrote " << deck_path << ": " << mesh.num_elements() << " elements, peak chamber pressure " << p
             << " kPa (run: ccx -i " << deck_path.substr(0, deck_path.rfind(".inp")) << ")\n";
   return 0;
 }
@@ -93,6 +114,9 @@ int run_cli(int argc, char** argv) {
   sim->add_option("scene", scene_file, "scene JSON file")->required();
   sim->add_option("-o,--output", output_dir, "output directory (overrides output.directory)");
   sim->add_option("--mesh-level", mesh_level, "mesh refinement level (overrides mesh.level)");
+  int element_order = 0;
+  sim->add_option("--element-order", element_order, "1 (linear) or 2 (quadratic): overrides mesh.element_order")
+      ->check(CLI::Range(1, 2));
 
   std::string deck_path = "out/scene.inp";
   double deck_pressure_kPa = 0.0;
@@ -118,7 +142,7 @@ int run_cli(int argc, char** argv) {
   }
   if (threads > 0) fem::set_thread_count(threads);
   try {
-    if (*sim) return simulate(scene_file, output_dir, mesh_level);
+    if (*sim) return simulate(scene_file, output_dir, mesh_level, element_order);
     if (*exp) return export_deck(scene_file, deck_path, deck_pressure_kPa, mesh_level);
     if (*schema) {
       print_schema(schema_scene);

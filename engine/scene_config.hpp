@@ -24,6 +24,7 @@ struct SceneConfig {
   OutputSpec output;
   bool verbose = false;
   int& mesh_level() { return scene == "tca" ? tca.mesh_level : scene == "spl" ? spl.mesh_level : rra.mesh_level; }
+  int& element_order() { return scene == "tca" ? tca.element_order : scene == "spl" ? spl.element_order : rra.element_order; }
 };
 
 /// Reads a scene file (the whole document); throws fem::InputError naming the field.
