@@ -23,6 +23,18 @@
 //                     [--increments 4] [--loose-tol 5e-3]
 //                     [--variants strict,loose,ccx,ccx-tight]   (ratio: time / the first variant's)
 // Medians over --repeat runs are printed (this machine is shared and noisy).
+// "dofs": 3 × nodes, constrained ones included (softarm: Hex27 nodes; ccx: the
+// C3D20 nodes). softarm's time is setup + solve (not meshing; the 3CA's includes
+// the dp/dV solve per step); ccx's is the whole process (reading the deck,
+// writing .dat/.frd).
+//
+// Measured 2026-11-22 (15 kPa, 4 increments, 1 thread, medians of 3 on the
+// shared 2-core machine under a load of ~5; seconds, Newton iterations):
+//   RRA 32 mm L1 (5,049 / 2,985 dofs): softarm 1.44 (19), loose 1.00 (12), ccx 0.86 (12)
+//   RRA 32 mm L2 (33,327 / 18,351):    softarm 19.8 (18), loose 11.2 (9),  ccx 15.8 (12)
+//   3CA 32 mm L1 (18,990 / 10,296):    softarm 22.1 (19), loose 14.0 (11), ccx 19.5 (12)
+//   3CA 64 mm L1 (34,830 / 18,720):    softarm 24.7 (18), loose 12.5 (8),  ccx 20.1 (13)
+//   3CA 32 mm L2 (139,206 / 72,750), one run: softarm 247 (18), ccx 277 (13)
 #include <unistd.h>
 
 #include <algorithm>
