@@ -97,6 +97,32 @@ fem::RraSceneSpec read_rra(JsonReader& root) {
   return spec;
 }
 
+/// model.symmetry: may the scene use a half model?
+bool read_symmetry(JsonReader& root) {
+  auto model = root.object("model", "model reduction");
+  const bool allow = model.choice("symmetry", "auto", {"auto", "off"},
+                                  "auto: solve a half model when pressures and gravity are mirror-symmetric") == "auto";
+  model.finish();
+  return allow;
+}
+
+/// load.chamber_pressures_kPa: exactly `count` peaks (kPa), ramped together.
+std::vector<double> read_chamber_pressures(JsonReader& load, std::size_t count, const std::string& which) {
+  const auto p = load.number_list("chamber_pressures_kPa", Range::non_negative(),
+                                  "peak pressure of chambers " + which + " (kPa), ramped together from 0");
+  if (p.size() != count)
+    throw InputError(load.field("chamber_pressures_kPa"), "needs " + std::to_string(count) + " pressures (chambers " +
+                                                               which + "), got " + std::to_string(p.size()));
+  return p;
+}
+
+/// The silicone and ABS parts every 3D actuator has.
+void read_actuator_materials(JsonReader& materials, fem::Material& tube, fem::Material& rings, fem::Material& sheath) {
+  tube = read_material(materials, "tube", "dragon_skin_30");
+  rings = read_material(materials, "rings", "digital_abs");
+  sheath = read_material(materials, "sheath", "dragon_skin_30");
+}
+
 std::optional<Eigen::Vector3d> read_vector3(JsonReader& r, const std::string& key, const std::string& doc);
 
 fem::TcaSceneSpec read_tca(JsonReader& root) {
@@ -105,9 +131,7 @@ fem::TcaSceneSpec read_tca(JsonReader& root) {
   spec.design = fem::read_tca_design(geometry);
 
   auto materials = root.object("materials", "materials by part: a built-in name or a material object");
-  spec.tube_material = read_material(materials, "tube", "dragon_skin_30");
-  spec.ring_material = read_material(materials, "rings", "digital_abs");
-  spec.sheath_material = read_material(materials, "sheath", "dragon_skin_30");
+  read_actuator_materials(materials, spec.tube_material, spec.ring_material, spec.sheath_material);
   materials.finish();
 
   auto mesh = root.object("mesh", "discretisation");
@@ -115,18 +139,12 @@ fem::TcaSceneSpec read_tca(JsonReader& root) {
             "1: trilinear Hex8/P0 (mean dilatation; locks in bending at coarse levels); 2: triquadratic Hex27/P1");
   mesh.finish();
 
-  auto model = root.object("model", "model reduction");
-  spec.allow_symmetry = model.choice("symmetry", "auto", {"auto", "off"},
-                                     "auto: solve a half model when pressures and gravity are mirror-symmetric") == "auto";
-  model.finish();
+  spec.allow_symmetry = read_symmetry(root);
 
   auto load = root.object("load", "loading");
-  const auto pressures = load.number_list("chamber_pressures_kPa", Range::non_negative(),
-                                          "peak pressure of chambers 1, 2, 3 (kPa), ramped together from 0");
-  if (pressures.size() != 3 || *std::max_element(pressures.begin(), pressures.end()) <= 0)
-    throw InputError(load.field("chamber_pressures_kPa"),
-                     "needs three pressures (chambers 1, 2, 3), at least one > 0; got " +
-                         std::to_string(pressures.size()) + " values");
+  const auto pressures = read_chamber_pressures(load, 3, "1, 2, 3");
+  if (*std::max_element(pressures.begin(), pressures.end()) <= 0)
+    throw InputError(load.field("chamber_pressures_kPa"), "at least one chamber pressure must be > 0");
   std::copy(pressures.begin(), pressures.end(), spec.chamber_pressure_kPa.begin());
   const double p_max = *std::max_element(pressures.begin(), pressures.end());
   spec.output_pressures_kPa = read_output_pressures(load, p_max);
@@ -155,9 +173,7 @@ fem::SplSceneSpec read_spl(JsonReader& root) {
   geometry.finish();
 
   auto materials = root.object("materials", "materials by part: a built-in name or a material object");
-  spec.tube_material = read_material(materials, "tube", "dragon_skin_30");
-  spec.ring_material = read_material(materials, "rings", "digital_abs");
-  spec.sheath_material = read_material(materials, "sheath", "dragon_skin_30");
+  read_actuator_materials(materials, spec.tube_material, spec.ring_material, spec.sheath_material);
   spec.connector_material = read_material(materials, "connector", "digital_abs");
   materials.finish();
 
@@ -165,17 +181,10 @@ fem::SplSceneSpec read_spl(JsonReader& root) {
   read_mesh(mesh, spec.mesh_level, spec.element_order, 2,
             "1: trilinear Hex8/P0 (a quick preview: locks in bending); 2: triquadratic Hex27/P1");
   mesh.finish();
-  auto model = root.object("model", "model reduction");
-  spec.allow_symmetry = model.choice("symmetry", "auto", {"auto", "off"},
-                                     "auto: solve a half model when pressures and gravity are mirror-symmetric") == "auto";
-  model.finish();
+  spec.allow_symmetry = read_symmetry(root);
 
   auto load = root.object("load", "loading");
-  const auto pressures = load.number_list("chamber_pressures_kPa", Range::non_negative(),
-                                          "peak pressure of chambers 1–9 (segment n: 3n−2 … 3n), kPa, ramped together");
-  if (pressures.size() != 9)
-    throw InputError(load.field("chamber_pressures_kPa"),
-                     "needs nine pressures (chambers 1–9), got " + std::to_string(pressures.size()));
+  const auto pressures = read_chamber_pressures(load, 9, "1–9; segment n holds 3n−2 … 3n");
   std::copy(pressures.begin(), pressures.end(), spec.chamber_pressure_kPa.begin());
   if (auto g = read_vector3(load, "gravity_m_s2", "gravity vector (m/s²): z along the arm towards the shoulder; "
                                                   "default [0, 0, -9.80665], the arm hanging"))

@@ -42,6 +42,7 @@
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/load_stepper.hpp"
 #include "support/test_problems.hpp"
+#include "support/tube_meshes.hpp"
 
 using namespace softarm;
 using namespace softarm::fem;
@@ -138,64 +139,12 @@ Mesh cube_with_cavity(int n, int order) {
 
 constexpr double kBore = 5.0, kOuter = 10.0, kLength = 1.0;  // mm
 
-/// Moves the nodes that to_quadratic_3d put on chords (mid-circumference) onto the
-/// cylinders r = const (copied from test_solid3d.cpp).
-void snap_to_cylinders(Mesh& mesh, int n_circumferential) {
-  constexpr double kTwoPi = 6.283185307179586;
-  const double step = kTwoPi / n_circumferential;
-  for (int n = 0; n < mesh.num_nodes(); ++n) {
-    const double theta = std::atan2(mesh.X(n, 1), mesh.X(n, 0));
-    const double off = std::remainder(theta, step);
-    if (std::abs(off) > 1e-9) mesh.X.block<1, 2>(n, 0) /= std::cos(off);
-  }
-}
-
-/// Closes the open bore of a full Hex27 tube (chamber 0) with two flat lids of 9-node
-/// facets fanned from new nodes on the axis, which belong to no element and are to be
-/// prescribed in place (copied from test_solid3d.cpp, where it is explained; 9-node
-/// facets only). Returns the added nodes.
-std::vector<int> close_bore(Mesh& mesh, double length) {
-  std::vector<Eigen::RowVector3d> added;
-  auto add_node = [&](const Eigen::RowVector3d& x) {
-    added.push_back(x);
-    return mesh.num_nodes() + static_cast<int>(added.size()) - 1;
-  };
-  auto position = [&](int n) -> Eigen::RowVector3d {
-    return n < mesh.num_nodes() ? Eigen::RowVector3d(mesh.X.row(n)) : added[n - mesh.num_nodes()];
-  };
-  std::vector<std::vector<int>> lids;
-  for (double z : {0.0, length}) {
-    const int axis = add_node(Eigen::RowVector3d(0, 0, z));
-    std::map<int, int> radial_mid;
-    auto mid = [&](int n) {
-      auto it = radial_mid.find(n);
-      if (it == radial_mid.end()) it = radial_mid.emplace(n, add_node(0.5 * (position(n) + position(axis)))).first;
-      return it->second;
-    };
-    for (const auto& f : mesh.chambers[0].facets) {
-      const bool bottom = z == 0.0;
-      const int a = bottom ? f[0] : f[3], b = bottom ? f[1] : f[2];
-      if (std::abs(position(a).z() - z) > 1e-12) continue;
-      const int p = bottom ? b : a, q = bottom ? a : b;
-      const int edge_mid = bottom ? f[4] : f[6];
-      const int centre = add_node(0.5 * (position(axis) + position(edge_mid)));
-      lids.push_back({axis, p, q, axis, mid(p), edge_mid, mid(q), axis, centre});
-    }
-  }
-  const int first = mesh.num_nodes();
-  mesh.X.conservativeResize(first + static_cast<int>(added.size()), 3);
-  for (std::size_t k = 0; k < added.size(); ++k) mesh.X.row(first + static_cast<int>(k)) = added[k];
-  mesh.chambers[0].facets.insert(mesh.chambers[0].facets.end(), lids.begin(), lids.end());
-  std::vector<int> nodes(added.size());
-  for (std::size_t k = 0; k < added.size(); ++k) nodes[k] = first + static_cast<int>(k);
-  return nodes;
-}
 
 /// Full Hex27 tube kBore → kOuter, one element long, with node sets "sym_x" (x = 0),
 /// "sym_y" (y = 0), "all" and "probe" (the bore node at (kBore, 0, 0)).
 Mesh tube(int nr, int nc) {
   Mesh mesh = to_quadratic_3d(hollow_cylinder_mesh(kBore, kOuter, kLength, nr, nc, 1));
-  snap_to_cylinders(mesh, nc);
+  test::snap_to_cylinders(mesh, nc);
   for (int n = 0; n < mesh.num_nodes(); ++n) {
     if (std::abs(mesh.X(n, 0)) < 1e-9) mesh.node_sets["sym_x"].push_back(n);
     if (std::abs(mesh.X(n, 1)) < 1e-9) mesh.node_sets["sym_y"].push_back(n);
@@ -436,7 +385,7 @@ TEST_CASE("CalculiX agrees with softarm on a pressurised plane-strain tube (quar
     // by the symmetric constraints u_x = 0 on x = 0 and u_y = 0 on y = 0.
     Mesh full = tube(nr, nc);
     const int solid_nodes = full.num_nodes();
-    const std::vector<int> lid_nodes = close_bore(full, kLength);
+    const std::vector<int> lid_nodes = test::close_bore(full, kLength);
     DirichletConstraints c;
     for (int n = 0; n < solid_nodes; ++n) c.fix(3 * n + 2);
     for (int n : full.node_sets.at("sym_x")) c.fix(3 * n);

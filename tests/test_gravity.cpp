@@ -92,7 +92,7 @@ TEST_CASE("gravity: a hanging block's support carries exactly its weight", "[gra
   }
 }
 
-TEST_CASE("gravity: gradient and zero Hessian match finite differences; off-axis gravity is refused", "[gravity]") {
+TEST_CASE("gravity: gradient and zero Hessian match finite differences, and off-axis gravity is refused", "[gravity]") {
   // The FD tolerance is test_forms.cpp's; gravity's gradient is constant, so any
   // error would be a wrong nodal force, not a truncation effect.
   for (int dim : {2, 3}) {

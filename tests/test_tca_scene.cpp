@@ -88,7 +88,7 @@ TEST_CASE("3CA bending angle and tip position agree with the pressure ordering",
   CHECK(*p < r.curve[1].pressure_kPa);
 }
 
-TEST_CASE("SPL: a symmetric pose on the half model matches the full model; a tip mass lowers the tip", "[spl_scene]") {
+TEST_CASE("SPL: a symmetric pose on the half model matches the full model, and a tip mass lowers the tip", "[spl_scene]") {
   SplSceneSpec s;
   for (auto& segment : s.design.segments) {
     RraDesign& a = segment.actuator;

@@ -60,6 +60,20 @@ Vector rotated_about_z(const Vector& x, double angle) {
   return y;
 }
 
+ChamberLoads add_chamber_loads(const Mesh& mesh, const std::vector<double>& peaks_kPa, const LoadState& load,
+                               EnergyProblem& problem) {
+  ChamberLoads out;
+  for (double p : peaks_kPa) out.peak_kPa = std::max(out.peak_kPa, p);
+  for (std::size_t c = 0; c < peaks_kPa.size() && c < mesh.chambers.size(); ++c)
+    if (peaks_kPa[c] > 0 && !mesh.chambers[c].facets.empty()) {
+      out.forms.push_back(std::make_shared<ChamberPressureForm>(mesh, static_cast<int>(c), load));
+      problem.add_form(out.forms.back());
+      out.loaded.push_back(out.forms.back().get());
+      out.fractions.push_back(peaks_kPa[c] / out.peak_kPa);
+    }
+  return out;
+}
+
 DirichletConstraints clamped_with_symmetry(const Mesh& mesh, const std::string& clamped_set) {
   DirichletConstraints c;
   std::vector<char> clamped(mesh.num_nodes(), 0);

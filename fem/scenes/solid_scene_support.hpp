@@ -7,7 +7,10 @@
 #include <utility>
 #include <vector>
 
+#include <memory>
+
 #include "fem/assembly/energy_problem.hpp"
+#include "fem/forms/chamber_pressure_form.hpp"
 #include "fem/forms/elastic_form.hpp"
 #include "fem/materials/material.hpp"
 #include "fem/mesh/mesh.hpp"
@@ -33,6 +36,18 @@ ModelChoice choose_mirror_model(const std::vector<double>& pressures_kPa, const 
 Eigen::Matrix3d rotation_about_z(double angle);
 /// Rotates every node-major 3-vector block of x about z.
 Vector rotated_about_z(const Vector& x, double angle);
+
+/// The pressure forms of the chambers with a peak pressure > 0 (and facets in the
+/// mesh: a half model lacks one chamber per segment), added to `problem`, with
+/// their shares of the largest peak for run_pressure_path.
+struct ChamberLoads {
+  std::vector<std::shared_ptr<ChamberPressureForm>> forms;
+  std::vector<const ChamberPressureForm*> loaded;
+  std::vector<double> fractions;
+  double peak_kPa = 0;  // the largest peak (0 when no chamber is loaded)
+};
+ChamberLoads add_chamber_loads(const Mesh& mesh, const std::vector<double>& peaks_kPa, const LoadState& load,
+                               EnergyProblem& problem);
 
 /// The node set `clamped` fixed in all directions; the "symmetry" set (if any) keeps u_y = 0.
 DirichletConstraints clamped_with_symmetry(const Mesh& mesh, const std::string& clamped);

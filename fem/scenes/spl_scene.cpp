@@ -54,18 +54,10 @@ SplResult run_spl_scene(const SplSceneSpec& spec, const std::function<void(const
   load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
   EnergyProblem problem(flattened_positions(mesh), clamped_with_symmetry(mesh, "top"));
   problem.add_form(elastic);
-  const auto& p = spec.chamber_pressure_kPa;
-  const double p_max = *std::max_element(p.begin(), p.end());
-  std::vector<std::shared_ptr<ChamberPressureForm>> chambers;
-  std::vector<const ChamberPressureForm*> loaded;
   PressurePathSpec path;
-  for (int c = 0; c < 9; ++c)
-    if (p[c] > 0 && !mesh.chambers[c].facets.empty()) {
-      chambers.push_back(std::make_shared<ChamberPressureForm>(mesh, c, load));
-      problem.add_form(chambers.back());
-      loaded.push_back(chambers.back().get());
-      path.pressure_fractions.push_back(p[c] / p_max);
-    }
+  const ChamberLoads chambers = add_chamber_loads(
+      mesh, {spec.chamber_pressure_kPa.begin(), spec.chamber_pressure_kPa.end()}, load, problem);
+  path.pressure_fractions = chambers.fractions;
   const Vector X = flattened_positions(mesh);
   if (spec.gravity_m_s2.norm() > 0) {
     auto gravity = std::make_shared<GravityForm>(mesh, materials, rotation_about_z(-theta) * spec.gravity_m_s2, load);
@@ -89,7 +81,7 @@ SplResult run_spl_scene(const SplSceneSpec& spec, const std::function<void(const
     pose.rotation = to_user * pose.rotation * to_user.transpose();
     return pose;
   };
-  path.max_pressure_kPa = p_max > 0 ? p_max : 1.0;
+  path.max_pressure_kPa = chambers.peak_kPa > 0 ? chambers.peak_kPa : 1.0;  // gravity alone: a unit scale
   for (double level : spec.output_levels) path.output_pressures_kPa.push_back(level * path.max_pressure_kPa);
   path.newton = spec.newton;
   path.steps = spec.steps;
@@ -101,7 +93,7 @@ SplResult run_spl_scene(const SplSceneSpec& spec, const std::function<void(const
     return SplState{s.pressure_kPa / path.max_pressure_kPa, tip.position_mm, tip.tilt_deg, s.newton_iterations};
   };
   PressureState last;
-  out.path = run_pressure_path(problem, loaded, load, x, path, [&](const PressureState& s, const Vector& xs) {
+  out.path = run_pressure_path(problem, chambers.loaded, load, x, path, [&](const PressureState& s, const Vector& xs) {
     last = s;
     if (!s.is_output) return;
     out.curve.push_back(state_of(s, xs));

@@ -78,18 +78,10 @@ TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
   load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
   EnergyProblem problem(flattened_positions(mesh), clamped_with_symmetry(mesh, "top"));
   problem.add_form(elastic);
-  const auto& p = spec.chamber_pressure_kPa;
-  const double p_max = std::max({p[0], p[1], p[2]});
-  std::vector<std::shared_ptr<ChamberPressureForm>> chambers;
-  std::vector<const ChamberPressureForm*> loaded;
   PressurePathSpec path;
-  for (int c = 0; c < 3; ++c)
-    if (p[c] > 0 && !mesh.chambers[c].facets.empty()) {
-      chambers.push_back(std::make_shared<ChamberPressureForm>(mesh, c, load));
-      problem.add_form(chambers.back());
-      loaded.push_back(chambers.back().get());
-      path.pressure_fractions.push_back(p[c] / p_max);
-    }
+  const ChamberLoads chambers = add_chamber_loads(
+      mesh, {spec.chamber_pressure_kPa.begin(), spec.chamber_pressure_kPa.end()}, load, problem);
+  path.pressure_fractions = chambers.fractions;
   if (spec.gravity_m_s2.norm() > 0) {
     problem.add_form(std::make_shared<GravityForm>(mesh, materials, tca_solver_gravity(spec, out.model), load));
     path.gravity_preload = true;
@@ -115,7 +107,7 @@ TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
   Eigen::Vector3d bend_direction = Eigen::Vector3d::Zero();
   for (int k = 0; k < 3; ++k) {
     const double angle = k * 2 * kPi / 3 - theta;
-    bend_direction -= p[k] * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0);
+    bend_direction -= spec.chamber_pressure_kPa[k] * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0);
   }
   const auto state_of = [&](const PressureState& s, const Vector& x) {
     const FaceMeasure now = face(x);
@@ -134,14 +126,14 @@ TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
     return t;
   };
 
-  path.max_pressure_kPa = p_max;
+  path.max_pressure_kPa = chambers.peak_kPa;
   path.output_pressures_kPa = spec.output_pressures_kPa;
   path.newton = spec.newton;
   path.steps = spec.steps;
   path.limit = spec.limit;
   Vector x = problem.reference_positions();
   const auto t_solve = Clock::now();
-  out.path = run_pressure_path(problem, loaded, load, x, path, [&](const PressureState& s, const Vector& xs) {
+  out.path = run_pressure_path(problem, chambers.loaded, load, x, path, [&](const PressureState& s, const Vector& xs) {
     out.states.push_back(state_of(s, xs));
     if (!s.is_output) return;
     out.curve.push_back(out.states.back());
