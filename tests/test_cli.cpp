@@ -92,3 +92,24 @@ TEST_CASE("softarm rejects bad scene input with the field named", "[cli]") {
     CHECK(r.output.find("/nonexistent/scene.json") != std::string::npos);
   }
 }
+
+TEST_CASE("softarm rejects bad 3CA and SPL input with the field named", "[cli]") {
+  const std::string sizes = R"("wall_thickness_normalised": 0.466, "end_cap_thickness_normalised": 0.25,
+    "ring_count_normalised": 0.375, "ring_thickness_normalised": 0.4)";
+  const auto tca = [&](const std::string& geometry, const std::string& load, const std::string& materials = "") {
+    return R"({"scene": "tca", "geometry": {)" + sizes + geometry + R"(}, "load": {)" + load + "}" +
+           (materials.empty() ? "" : R"(, "materials": {)" + materials + "}") + "}";
+  };
+  const std::string pressures = R"("chamber_pressures_kPa": [0, 40, 40])";
+  expect_input_error(tca(R"(, "actuator_spacing_mm": 1)", pressures), "geometry.actuator_spacing_mm");
+  expect_input_error(tca(R"(, "sheath_thickness_mm": 0.5)", pressures), "geometry.sheath_thickness_mm");
+  expect_input_error(tca(R"(, "centre_hole_diameter_mm": 30)", pressures), "geometry.centre_hole_diameter_mm");
+  expect_input_error(tca("", R"("chamber_pressures_kPa": [1, 2])"), "load.chamber_pressures_kPa");
+  expect_input_error(tca("", R"("chamber_pressures_kPa": [0, 0, 0])"), "load.chamber_pressures_kPa");
+  expect_input_error(tca("", pressures + R"(, "gravity_m_s2": [0, 1])"), "load.gravity_m_s2");
+  expect_input_error(tca("", pressures, R"("sheath": "dragon_skin_99")"), "materials.sheath");
+  expect_input_error(R"({"scene": "spl", "geometry": {)" + sizes + R"(, "bottom_radius_mm": 9}, "load": {"chamber_pressures_kPa": [0, 1, 1, 0, 0, 0, 0, 0, 0]}})",
+                     "bottom_radius_mm");
+  expect_input_error(R"({"scene": "spl", "geometry": {)" + sizes + R"(}, "load": {"chamber_pressures_kPa": [1, 2, 3]}})",
+                     "load.chamber_pressures_kPa");
+}
