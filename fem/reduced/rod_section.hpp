@@ -1,0 +1,61 @@
+#pragma once
+// Cross-sections of the reduced (rod) model of RRAs and 3CAs, integrated in
+// strips normal to the bending direction. Planar bending (Euler–Bernoulli,
+// plane sections stay plane and normal to the axis) with large stretch: the
+// fibre at distance y from the section's reference point (the 3CA axis, or the
+// RRA axis) has stretch λ(y) = λ0 − κ·y, κ = dθ/dS per reference length, so
+// only the area of each material at each y matters. Each strip keeps the area
+// of every material between y − Δy/2 and y + Δy/2, from exact chord lengths of
+// circles and of the sheath's envelope (the Minkowski sum of the axes'
+// triangle and a disc of radius r_o + t_s), midpoint rule across sub-rows.
+//
+// What the section leaves out (our definitions, README "reduced model"):
+// - rings carry no axial load: they are discrete, in series with silicone gaps,
+//   so the tube wall and the core around a ring count as silicone for stiffness;
+//   the rings' mass is smeared along the segment;
+// - the chamber's pressure acts as an axial force p·A_c at the chamber's axis
+//   (A_c = π r_c² of the undeformed chamber at that height, held by the rings),
+//   which the end caps transmit; the rod model multiplies it by a factor
+//   calibrated against the axisymmetric FEM (rra_calibration.hpp);
+// - the end caps are solid tube material (the chamber's force area is taken at
+//   the cap's inner face).
+#include <array>
+#include <vector>
+
+#include "fem/mesh/tca_design.hpp"
+
+namespace softarm::fem {
+
+/// Materials of a section's fibres.
+enum class FibreMaterial { tube = 0, sheath = 1 };
+
+struct FibreStrip {
+  double y = 0;          // strip centre along the bending direction, mm
+  double tube_area = 0;  // mm² of tube material in the strip
+  double sheath_area = 0;
+};
+
+struct RodSection {
+  std::vector<FibreStrip> strips;
+  /// Chamber k (k = 0..count-1): position along the bending direction and the
+  /// area its pressure acts on (mm²).
+  std::vector<double> chamber_y, chamber_force_area;
+  double tube_area = 0, sheath_area = 0;  // mm², sums over the strips
+};
+
+/// The 3CA section at height z (0 = bottom, l = top), bending towards the unit
+/// direction at angle `bend_direction_rad` in the section plane (chamber 1's
+/// axis at angle 0, chamber k at (k − 1)·120°). `strips` strips across the
+/// envelope, `subrows` midpoint rows per strip.
+RodSection tca_section(const TcaDesign& design, double z, double bend_direction_rad, int strips = 48, int subrows = 6);
+
+/// The lone RRA's section at height z (axisymmetric: the bending direction is irrelevant).
+RodSection rra_section(const RraDesign& design, double z, int strips = 32, int subrows = 6);
+
+/// Chamber radius for the pressure force at height z: r_c(z) inside the
+/// chamber, r_c at the nearer cap face inside a cap.
+double chamber_force_radius(const RraDesign& design, double z);
+/// True where z lies inside an end cap (solid tube material).
+bool in_end_cap(const RraDesign& design, double z);
+
+}  // namespace softarm::fem
