@@ -1,0 +1,246 @@
+#include "objectives/arm_evaluation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace softarm::objectives {
+namespace {
+constexpr double kDeg = 180.0 / 3.14159265358979323846;
+constexpr double kHanging = -1.5707963267948966;  // clamp direction: the axis points down (−Z)
+
+fem::RodPiece segment_piece(const fem::TcaDesign& d) {
+  fem::RodPiece p;
+  p.kind = fem::RodPiece::Kind::tca;
+  p.design = d;
+  // No calibration factor inside a 3CA: the core stops the chamber bulging between
+  // the rings, which is what the lone RRA's factor measures (README, reduced model).
+  return p;
+}
+
+// Connector c (0: shoulder, on segment 1's top; 1: between 1 and 2; 2: between 2 and 3)
+// fills the 3CA's envelope at the joint.
+fem::RodPiece connector_piece(const ArmCandidate& c, int index) {
+  const fem::SplDesign& d = c.design;
+  const fem::TcaDesign& seg = d.segments[index == 0 ? 0 : index - 1];
+  const double z = index == 0 ? seg.actuator.length_mm : 0.0;
+  const fem::RodSection s = fem::tca_section(seg, z, 0.0);
+  const double hole = 3.14159265358979323846 * std::pow(seg.centre_hole_diameter_mm / 2, 2);
+  fem::RodPiece p;
+  p.kind = fem::RodPiece::Kind::connector;
+  p.length_mm = d.connector_thickness_mm;
+  p.mass_kg = d.connector_mass_g ? *d.connector_mass_g * 1e-3
+                                 : (s.tube_area + s.sheath_area + hole) * d.connector_thickness_mm *
+                                       c.connector.density_g_cm3 * 1e-6;
+  return p;
+}
+
+fem::ArmRodSpec rod_spec(const ArmCandidate& c, const EvaluationSettings& s) {
+  fem::ArmRodSpec spec;
+  spec.tube = c.tube;
+  spec.sheath = c.sheath;
+  spec.rings = c.rings;
+  spec.nodes_per_segment = s.rod_nodes_per_segment;
+  return spec;
+}
+
+fem::RraCalibration segment_rra_fem(const ArmCandidate& c, const EvaluationSettings& s, int n) {
+  fem::RraSceneSpec spec;
+  spec.design = c.design.segments[n].actuator;
+  spec.tube_material = c.tube;
+  spec.ring_material = c.rings;
+  spec.mesh_level = s.rra_mesh_level;
+  spec.path.max_pressure_kPa = s.working_pressure_kPa;
+  for (int k = 1; k <= 10; ++k) spec.path.output_pressures_kPa.push_back(s.working_pressure_kPa * k / 10);
+  return fem::calibrate_rra(spec);
+}
+
+// Burst utilisation of the local peaks: max over criteria (a) and (b) of measure / allowable.
+std::pair<double, std::string> utilisation(const fem::RraCalibration::Peaks& peaks, const fem::Material& m, double sf) {
+  double u = 0;
+  std::string by;
+  if (std::isfinite(m.elongation_at_break)) {
+    const double v = peaks.stretch / ((1 + m.elongation_at_break) / sf);
+    if (v > u) u = v, by = "stretch";
+  }
+  if (std::isfinite(m.tensile_strength_MPa)) {
+    const double v = peaks.stress_MPa / (m.tensile_strength_MPa / sf);
+    if (v > u) u = v, by = "stress";
+  }
+  return {u, by};
+}
+
+SegmentMeasures measure_segment(const ArmCandidate& c, const EvaluationSettings& s, int n) {
+  SegmentMeasures out;
+  const fem::RraCalibration cal = segment_rra_fem(c, s, n);
+  if (!cal.pressure_kPa.empty()) {
+    out.rra_pressure_kPa = cal.pressure_kPa.back();
+    out.rra_fem_extension_mm = cal.fem_extension_mm.back();
+    out.rra_rod_extension_mm = cal.rod_extension_mm.back();
+  }
+  const fem::ArmRod rod = segment_rod(c, s, n);
+  fem::RodLoad load;
+  load.chamber_pressure_kPa = {{0.0, s.working_pressure_kPa, s.working_pressure_kPa}};
+  load.gravity_m_s2 = {-s.gravity_m_s2, 0.0};  // against the bend (towards +x)
+  load.clamp_angle_rad = kHanging;
+  double previous_u = 0, previous_p = 0;
+  const auto on_step = [&](double fraction, const fem::RodState& st) {
+    const double p = fraction * s.working_pressure_kPa;
+    const double angle = rod.tip_rotation(st, load) * kDeg;
+    if (!out.bending_deg.empty() && out.pressure_for_target_kPa < 0 && angle >= s.target_bending_deg) {
+      const double a0 = out.bending_deg.back(), p0 = out.pressure_kPa.back();
+      out.pressure_for_target_kPa = p0 + (s.target_bending_deg - a0) * (p - p0) / (angle - a0);
+    }
+    out.pressure_kPa.push_back(p);
+    out.bending_deg.push_back(angle);
+    out.chamber_stretch = rod.extremes(st, load, 0).chamber_max_stretch;
+    out.peaks = cal.peaks_at(out.chamber_stretch);
+    const auto [u, by] = utilisation(out.peaks, c.tube, s.safety_factor);
+    if (out.safe_pressure_kPa < 0 && u >= 1) {
+      out.safe_pressure_kPa = previous_p + (1 - previous_u) * (p - previous_p) / (u - previous_u);
+      out.governing = by;
+    }
+    out.burst_utilisation = u;
+    previous_u = u, previous_p = p;
+  };
+  const fem::RodState st = rod.follow(load, s.pressure_steps, on_step);
+  out.bending_deg_at_working = out.bending_deg.empty() ? 0.0 : out.bending_deg.back();
+  if (!st.converged) {
+    out.rod_diagnosis = st.diagnosis;
+    const double reached = out.pressure_kPa.empty() ? 0.0 : out.pressure_kPa.back();
+    if (out.safe_pressure_kPa < 0 || reached < out.safe_pressure_kPa) {
+      out.safe_pressure_kPa = reached;
+      out.governing = "limit point (rod)";
+    }
+  }
+  if (cal.limit_point && (out.safe_pressure_kPa < 0 || cal.last_pressure_kPa < out.safe_pressure_kPa)) {
+    out.safe_pressure_kPa = cal.last_pressure_kPa;
+    out.governing = "limit point (RRA FEM)";
+  }
+  // A limit point below the working pressure: utilisation as the pressure ratio (> 1).
+  if (out.safe_pressure_kPa >= 0 && out.governing.rfind("limit", 0) == 0)
+    out.burst_utilisation = std::max(out.burst_utilisation, s.working_pressure_kPa / std::max(out.safe_pressure_kPa, 1.0));
+  return out;
+}
+
+// Tip rotation (deg) of the hanging arm at the working pressure with tip mass m, from a nearby state.
+struct PayloadProbe {
+  double mass = 0, angle = 0;
+  fem::RodState state;
+  bool ok = false;
+};
+}  // namespace
+
+fem::ArmRod segment_rod(const ArmCandidate& c, const EvaluationSettings& s, int segment) {
+  fem::ArmRodSpec spec = rod_spec(c, s);
+  spec.pieces = {segment_piece(c.design.segments[segment])};
+  return fem::ArmRod(spec);
+}
+
+fem::ArmRod arm_rod(const ArmCandidate& c, const EvaluationSettings& s) {
+  fem::ArmRodSpec spec = rod_spec(c, s);
+  spec.pieces = {connector_piece(c, 0), segment_piece(c.design.segments[0]), connector_piece(c, 1),
+                 segment_piece(c.design.segments[1]), connector_piece(c, 2), segment_piece(c.design.segments[2])};
+  return fem::ArmRod(spec);
+}
+
+ArmMeasures evaluate_arm(const ArmCandidate& c, const EvaluationSettings& s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  for (const auto& seg : c.design.segments) fem::validate(seg);
+  ArmMeasures out;
+  const fem::ArmRod arm = arm_rod(c, s);
+  out.mass_kg = arm.mass_kg();
+  out.masses = arm.part_masses_kg();
+  out.length_mm = arm.length_mm();
+
+  out.min_bending_deg = 1e300;
+  for (int n = 0; n < 3; ++n) {
+    out.segments[n] = measure_segment(c, s, n);
+    const SegmentMeasures& m = out.segments[n];
+    out.min_bending_deg = std::min(out.min_bending_deg, m.bending_deg_at_working);
+    if (m.burst_utilisation >= out.burst_utilisation) {
+      out.burst_utilisation = m.burst_utilisation;
+      out.burst_governing = m.governing.empty() ? "none up to the working pressure" : m.governing;
+    }
+    if (m.safe_pressure_kPa >= 0 && (out.safe_pressure_kPa < 0 || m.safe_pressure_kPa < out.safe_pressure_kPa))
+      out.safe_pressure_kPa = m.safe_pressure_kPa;
+    out.durability_log_strain = std::max(out.durability_log_strain, m.peaks.log_strain);
+  }
+
+  // Payload: the hanging arm at the working pressure, tip mass raised until the tip no longer reaches 90°.
+  fem::RodLoad load;
+  load.chamber_pressure_kPa.assign(6, {0.0, 0.0, 0.0});
+  for (int piece : {1, 3, 5}) load.chamber_pressure_kPa[piece] = {0.0, s.working_pressure_kPa, s.working_pressure_kPa};
+  load.gravity_m_s2 = {0.0, -s.gravity_m_s2};
+  load.clamp_angle_rad = kHanging;
+  const double target = s.lift_angle_deg;
+  const auto probe = [&](double m, const fem::RodState* from) {
+    PayloadProbe p;
+    p.mass = m;
+    fem::RodLoad l = load;
+    l.tip_mass_kg = m;
+    p.state = from ? arm.solve(l, from) : arm.follow(l, s.pressure_steps);
+    p.ok = p.state.converged;
+    p.angle = p.ok ? arm.tip_rotation(p.state, l) * kDeg : -1e300;
+    return p;
+  };
+  PayloadProbe low = probe(0.0, nullptr);
+  if (!low.ok) {
+    out.payload_kg = 0;
+    out.payload_note = "the unloaded arm does not reach the working pressure: " + low.state.diagnosis;
+  } else if (low.angle < target) {
+    // Cannot lift even itself: a negative capacity, extrapolated with dθ/dm, keeps the margin informative.
+    const PayloadProbe next = probe(0.05, &low.state);
+    const double slope = next.ok ? (next.angle - low.angle) / 0.05 : -1.0;
+    out.payload_kg = slope < 0 ? (target - low.angle) / slope : -1.0;
+    out.payload_note = "the unloaded arm's tip reaches only " + std::to_string(low.angle) + " deg";
+  } else {
+    // March up in mass from the last good state, then regula falsi on the bracket.
+    PayloadProbe high;
+    double step = 0.1;
+    while (true) {
+      PayloadProbe p = probe(low.mass + step, &low.state);
+      if (p.ok && p.angle >= target) {
+        low = std::move(p);
+        step *= 1.5;
+      } else if (p.ok || step < 1e-3) {
+        high = std::move(p);
+        break;
+      } else {
+        step *= 0.5;  // no equilibrium near the last state at that mass: approach it more slowly
+      }
+      if (low.mass > 50) break;  // far beyond any arm of this size: stop searching
+    }
+    for (int it = 0; it < 12 && high.mass - low.mass > 1e-4; ++it) {
+      const double m = high.ok ? low.mass + (low.angle - target) * (high.mass - low.mass) / (low.angle - high.angle)
+                               : 0.5 * (low.mass + high.mass);
+      PayloadProbe p = probe(std::clamp(m, low.mass + 1e-5, high.mass - 1e-5), &low.state);
+      if (p.ok && std::abs(p.angle - target) < 1e-3) {
+        low = std::move(p);
+        break;
+      }
+      if (p.ok && p.angle >= target) low = std::move(p);
+      else high = std::move(p);
+    }
+    out.payload_kg = low.mass;
+    out.payload_note = high.ok ? "tip tangent at " + std::to_string(target) + " deg from vertical"
+                               : "limit point: beyond it the arm cannot hold the mass";
+  }
+  out.payload_tip_x_mm = low.state.x;
+  out.payload_tip_z_mm = low.state.z;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+double durability_reference_log_strain(double pressure_kPa, int mesh_level) {
+  fem::RraSceneSpec spec;  // RraDesign's defaults are the thesis RRA (Table 7)
+  spec.tube_material = fem::builtin_material("dragon_skin_30", "durability_reference");
+  spec.ring_material = fem::builtin_material("digital_abs", "durability_reference");
+  spec.mesh_level = mesh_level;
+  spec.path.max_pressure_kPa = pressure_kPa;
+  spec.path.output_pressures_kPa = {pressure_kPa};
+  const fem::RraResult r = fem::run_rra_scene(spec);
+  return r.curve.empty() ? std::nan("") : r.curve.back().tube_max_log_strain;
+}
+
+}  // namespace softarm::objectives
