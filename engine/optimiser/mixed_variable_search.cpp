@@ -167,9 +167,12 @@ void MixedVariableSearch::integer_neighbours(const std::vector<double>& relaxed,
   std::size_t combinations = 1;
   for (std::size_t j = 0; j < ints.size(); ++j) {
     const Variable& v = space_.variable(ints[j]);
+    // A relaxed value within the search's resolution of an integer is that
+    // integer (the piecewise-linear relaxation often has its optimum on a vertex).
+    const double snap = std::clamp(10 * options_.relative_tolerance * (v.upper - v.lower), 1e-9, 0.05);
     const double r = relaxed[ints[j]];
-    const double lo = std::clamp(std::floor(r + 1e-9), v.lower, v.upper);
-    const double hi = std::clamp(std::ceil(r - 1e-9), v.lower, v.upper);
+    const double lo = std::clamp(std::floor(r + snap), v.lower, v.upper);
+    const double hi = std::clamp(std::ceil(r - snap), v.lower, v.upper);
     if (lo == hi) values[j] = {lo};
     else values[j] = r - lo <= hi - r ? std::vector<double>{lo, hi} : std::vector<double>{hi, lo};
     combinations *= values[j].size();
