@@ -330,3 +330,30 @@ TEST_CASE("optimiser: multi-start finds the global of two minima", "[optimiser]"
     CHECK(phases.count("start 4") == 1);
   }
 }
+
+TEST_CASE("optimiser: malformed evaluations are failures and callback errors propagate", "[optimiser]") {
+  // The wrong number of constraints is a failure with its reason, never a crash.
+  Problem p = constrained_quadratic();
+  p.evaluate = [](const std::vector<double>&) {
+    Evaluation e;
+    e.objective = 1;
+    return e;  // no constraints, one expected
+  };
+  const Result r = minimise(p, with("nlopt:cobyla", 20));
+  CHECK_FALSE(r.feasible);
+  CHECK_FALSE(r.best.ok);
+  CHECK(any_failure(r, "returned 0 constraints, expected 1"));
+  CHECK_THAT(r.stop_reason, Contains("every evaluation failed"));
+
+  // An exception from the progress callback stops the solver cleanly and reaches the caller.
+  for (const std::string name : {"nlopt:cobyla", "nlopt:slsqp", "ipopt"}) {
+    INFO(name);
+    Options o = with(name, 100);
+    int calls = 0;
+    o.on_evaluation = [&](const Progress&) {
+      if (++calls == 5) throw std::runtime_error("user abort");
+    };
+    CHECK_THROWS_WITH(minimise(constrained_quadratic(), o), "user abort");
+    CHECK(calls == 5);
+  }
+}
