@@ -49,13 +49,24 @@ ArmRod::ArmRod(ArmRodSpec spec)
       continue;
     }
     const RraDesign& a = piece.design.actuator;
-    const int n = std::max(3, spec_.nodes_per_segment);
-    for (int i = 0; i < n; ++i) {
-      const double local = a.length_mm * i / (n - 1), z = a.length_mm - local;  // the top (z = l) faces the clamp
-      nodes_.push_back({p, false,
-                        piece.kind == RodPiece::Kind::tca ? tca_section(piece.design, z, spec_.bend_direction_rad)
-                                                          : rra_section(a, z)});
-      s_.push_back(s0 + local);
+    // Three zones (top cap, chamber, bottom cap) meshed separately, with a node on each side of
+    // the zone boundaries (ΔS = 0 between them): the section jumps there (solid cap vs hollow
+    // chamber), and the trapezoid rule keeps its second order only on smooth zones.
+    const double l = a.length_mm, tc = a.end_cap_thickness_mm;
+    const int n = std::max(5, spec_.nodes_per_segment);
+    const int cap_nodes = std::max(2, static_cast<int>(std::lround(n * tc / l)) + 1);
+    const std::array<std::array<double, 2>, 3> zones{{{0.0, tc}, {tc, l - tc}, {l - tc, l}}};  // in local s = l − z
+    for (int k = 0; k < 3; ++k) {
+      const int count = k == 1 ? std::max(3, n - 2 * cap_nodes) : cap_nodes;
+      const double eps = 1e-9 * l;  // evaluate the section just inside the zone
+      for (int i = 0; i < count; ++i) {
+        const double local = zones[k][0] + (zones[k][1] - zones[k][0]) * i / (count - 1);
+        const double z = std::clamp(l - local, l - zones[k][1] + eps, l - zones[k][0] - eps);
+        nodes_.push_back({p, false,
+                          piece.kind == RodPiece::Kind::tca ? tca_section(piece.design, z, spec_.bend_direction_rad)
+                                                            : rra_section(a, z)});
+        s_.push_back(s0 + local);
+      }
     }
     // Exact part masses (rra_design.hpp), distributed along the piece as its section areas are.
     const double count = piece.kind == RodPiece::Kind::tca ? 3.0 : 1.0;
