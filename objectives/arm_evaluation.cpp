@@ -70,9 +70,9 @@ std::pair<double, std::string> utilisation(const fem::RraCalibration::Peaks& pea
   return {u, by};
 }
 
-SegmentMeasures measure_segment(const ArmCandidate& c, const EvaluationSettings& s, int n) {
+SegmentMeasures measure_segment(const ArmCandidate& c, const EvaluationSettings& s, int n,
+                                const fem::RraCalibration& cal) {
   SegmentMeasures out;
-  const fem::RraCalibration cal = segment_rra_fem(c, s, n);
   if (!cal.pressure_kPa.empty()) {
     out.rra_pressure_kPa = cal.pressure_kPa.back();
     out.rra_fem_extension_mm = cal.fem_extension_mm.back();
@@ -123,9 +123,9 @@ SegmentMeasures measure_segment(const ArmCandidate& c, const EvaluationSettings&
   return out;
 }
 
-// Tip rotation (deg) of the hanging arm at the working pressure with tip mass m, from a nearby state.
+// The hanging arm at the working pressure with tip mass m, solved from a nearby state.
 struct PayloadProbe {
-  double mass = 0, angle = 0;
+  double mass = 0, angle = 0, utilisation = 0, margin = 0;
   fem::RodState state;
   bool ok = false;
 };
@@ -154,8 +154,10 @@ ArmMeasures evaluate_arm(const ArmCandidate& c, const EvaluationSettings& s) {
   out.length_mm = arm.length_mm();
 
   out.min_bending_deg = 1e300;
+  std::array<fem::RraCalibration, 3> cal;
   for (int n = 0; n < 3; ++n) {
-    out.segments[n] = measure_segment(c, s, n);
+    cal[n] = segment_rra_fem(c, s, n);
+    out.segments[n] = measure_segment(c, s, n, cal[n]);
     const SegmentMeasures& m = out.segments[n];
     out.min_bending_deg = std::min(out.min_bending_deg, m.bending_deg_at_working);
     if (m.burst_utilisation >= out.burst_utilisation) {
@@ -173,7 +175,27 @@ ArmMeasures evaluate_arm(const ArmCandidate& c, const EvaluationSettings& s) {
   for (int piece : {1, 3, 5}) load.chamber_pressure_kPa[piece] = {0.0, s.working_pressure_kPa, s.working_pressure_kPa};
   load.gravity_m_s2 = {0.0, -s.gravity_m_s2};
   load.clamp_angle_rad = kHanging;
+  // "Lifts the tip to horizontal" (spec §4): the tip tangent reaches the lift angle from vertical
+  // with the arm's material within the burst criteria (a), (b) under the payload: the local peaks
+  // of every segment at its pressurised chambers' axial stretch (as in the bending scene) and the
+  // sheath's largest fibre stretch. Without the material limit a heavy mass hanging under the
+  // shoulder would pass: the moment of a tip load vanishes at the tip, so the pressure still curls
+  // the tip's last centimetres to 90°, while the load stretches the arm far past its break.
+  // lift_margin is the smaller margin, in degrees (utilisation scaled by 90°).
   const double target = s.lift_angle_deg;
+  const auto utilisation_under_load = [&](const fem::RodState& st, const fem::RodLoad& l) {
+    double u = 0;
+    for (int n = 0; n < 3; ++n) {
+      const fem::PieceExtremes e = arm.extremes(st, l, 2 * n + 1);
+      u = std::max(u, utilisation(cal[n].peaks_at(e.chamber_max_stretch), c.tube, s.safety_factor).first);
+      if (std::isfinite(c.sheath.elongation_at_break))
+        u = std::max(u, e.sheath_max_stretch / ((1 + c.sheath.elongation_at_break) / s.safety_factor));
+    }
+    return u;
+  };
+  const auto lift_margin = [&](const PayloadProbe& p) {
+    return p.ok ? std::min(p.angle - target, 90.0 * (1 - p.utilisation)) : -1e300;
+  };
   const auto probe = [&](double m, const fem::RodState* from) {
     PayloadProbe p;
     p.mass = m;
@@ -182,25 +204,29 @@ ArmMeasures evaluate_arm(const ArmCandidate& c, const EvaluationSettings& s) {
     p.state = from ? arm.solve(l, from) : arm.follow(l, s.pressure_steps);
     p.ok = p.state.converged;
     p.angle = p.ok ? arm.tip_rotation(p.state, l) * kDeg : -1e300;
+    p.utilisation = p.ok ? utilisation_under_load(p.state, l) : 1e300;
+    p.margin = lift_margin(p);
     return p;
   };
   PayloadProbe low = probe(0.0, nullptr);
   if (!low.ok) {
     out.payload_kg = 0;
     out.payload_note = "the unloaded arm does not reach the working pressure: " + low.state.diagnosis;
-  } else if (low.angle < target) {
-    // Cannot lift even itself: a negative capacity, extrapolated with dθ/dm, keeps the margin informative.
+  } else if (low.margin < 0) {
+    // Cannot lift even itself: a negative capacity, extrapolated with the margin's slope in m,
+    // keeps the constraint informative for the optimiser.
     const PayloadProbe next = probe(0.05, &low.state);
-    const double slope = next.ok ? (next.angle - low.angle) / 0.05 : -1.0;
-    out.payload_kg = slope < 0 ? (target - low.angle) / slope : -1.0;
-    out.payload_note = "the unloaded arm's tip reaches only " + std::to_string(low.angle) + " deg";
+    const double slope = next.ok ? (next.margin - low.margin) / 0.05 : 0.0;
+    out.payload_kg = slope < 0 ? low.margin / -slope : -1.0;
+    out.payload_note = "the unloaded arm does not lift its tip to horizontal (tip at " + std::to_string(low.angle) +
+                       " deg from vertical)";
   } else {
     // March up in mass from the last good state, then regula falsi on the bracket.
     PayloadProbe high;
     double step = 0.1;
     while (true) {
       PayloadProbe p = probe(low.mass + step, &low.state);
-      if (p.ok && p.angle >= target) {
+      if (p.ok && p.margin >= 0) {
         low = std::move(p);
         step *= 1.5;
       } else if (p.ok || step < 1e-3) {
@@ -209,22 +235,23 @@ ArmMeasures evaluate_arm(const ArmCandidate& c, const EvaluationSettings& s) {
       } else {
         step *= 0.5;  // no equilibrium near the last state at that mass: approach it more slowly
       }
-      if (low.mass > 50) break;  // far beyond any arm of this size: stop searching
     }
     for (int it = 0; it < 12 && high.mass - low.mass > 1e-4; ++it) {
-      const double m = high.ok ? low.mass + (low.angle - target) * (high.mass - low.mass) / (low.angle - high.angle)
+      const double m = high.ok ? low.mass + low.margin * (high.mass - low.mass) / (low.margin - high.margin)
                                : 0.5 * (low.mass + high.mass);
       PayloadProbe p = probe(std::clamp(m, low.mass + 1e-5, high.mass - 1e-5), &low.state);
-      if (p.ok && std::abs(p.angle - target) < 1e-3) {
+      if (p.ok && p.margin >= 0 && p.margin < 1e-3) {
         low = std::move(p);
         break;
       }
-      if (p.ok && p.angle >= target) low = std::move(p);
+      if (p.ok && p.margin >= 0) low = std::move(p);
       else high = std::move(p);
     }
     out.payload_kg = low.mass;
-    out.payload_note = high.ok ? "tip tangent at " + std::to_string(target) + " deg from vertical"
-                               : "limit point: beyond it the arm cannot hold the mass";
+    out.payload_note = !high.ok ? "limit point: beyond it the arm cannot hold the mass"
+                       : low.angle - target <= 90.0 * (1 - low.utilisation)
+                           ? "tip tangent at " + std::to_string(target) + " deg from vertical"
+                           : "burst criteria under the payload (utilisation " + std::to_string(low.utilisation) + ")";
   }
   out.payload_tip_x_mm = low.state.x;
   out.payload_tip_z_mm = low.state.z;

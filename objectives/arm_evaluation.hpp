@@ -12,7 +12,9 @@
 // - payload: the whole arm hanging from the shoulder (gravity along its axis),
 //   in every segment chambers 2 and 3 at the working pressure (the bend is
 //   planar, towards chamber 1); the largest tip mass whose tip tangent still
-//   reaches 90° from vertical (spec §4);
+//   reaches 90° from vertical (spec §4) with the material within the burst
+//   criteria under that load (else a heavy mass hanging below the shoulder
+//   would pass while only the tip curls);
 // - burst (safe working pressure, spec §4): along each segment's bending path
 //   the actuator's stretch at the pressurised chambers' axes is mapped, through
 //   the lone RRA's FEM path, to the local peak principal stretch and Cauchy
