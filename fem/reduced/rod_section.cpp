@@ -34,6 +34,19 @@ Interval polygon_chord(const std::vector<std::array<double, 2>>& p, double y) {
   return out.lo <= out.hi ? out : Interval{};
 }
 
+// Exact area of the disc (centre height cy, radius r) between the lines y = a and y = b > a:
+// F(y) = r² asin(y/r) + y √(r² − y²) is ∫ 2√(r² − t²) dt. Exact strips keep the section a
+// smooth function of the geometry (a sampled chord is not, near the circle's top and bottom),
+// so finite-difference gradients of the rod's results are clean down to small steps.
+double disc_strip_area(double cy, double r, double a, double b) {
+  if (r <= 0) return 0.0;
+  const auto f = [r](double y) {
+    const double t = std::clamp(y, -r, r);
+    return r * r * std::asin(t / r) + t * std::sqrt(std::max(0.0, r * r - t * t));
+  };
+  return f(b - cy) - f(a - cy);
+}
+
 Interval hull(Interval a, const Interval& b) {
   if (b.lo > b.hi) return a;
   if (a.lo > a.hi) return b;
@@ -88,21 +101,24 @@ RodSection tca_section(const TcaDesign& design, double z, double bend_direction_
   if (cross < 0) std::swap(axes[1], axes[2]);
   double y_lo = 1e300, y_hi = -1e300;
   for (const auto& c : axes) y_lo = std::min(y_lo, c[1] - rho), y_hi = std::max(y_hi, c[1] + rho);
+  // The envelope's chord is C1 inside (arcs meet the straight sides tangentially): 3-point
+  // Gauss–Legendre per sub-row; the discs (tubes, chambers, centre hole) are exact.
   const double dy = (y_hi - y_lo) / strips, dr = dy / subrows;
+  const double gauss[3][2] = {{-0.7745966692414834, 5.0 / 18}, {0.0, 8.0 / 18}, {0.7745966692414834, 5.0 / 18}};
   for (int j = 0; j < strips; ++j) {
     FibreStrip f;
-    f.y = y_lo + (j + 0.5) * dy;
-    for (int r = 0; r < subrows; ++r) {
-      const double y = y_lo + j * dy + (r + 0.5) * dr;
-      double tube = 0, holes = disc_chord(0, 0, r_hole, y).length();
-      for (const auto& c : axes) {
-        const double outer = disc_chord(c[0], c[1], r_o, y).length(), chamber = disc_chord(c[0], c[1], r_c, y).length();
-        tube += outer - chamber;
-        holes += outer;
-      }
-      f.tube_area += tube * dr;
-      f.sheath_area += std::max(0.0, envelope_chord(axes, rho, y).length() - holes) * dr;
+    const double a = y_lo + j * dy, b = a + dy;
+    f.y = 0.5 * (a + b);
+    double envelope = 0, outer = disc_strip_area(0, r_hole, a, b);
+    for (int r = 0; r < subrows; ++r)
+      for (const auto& g : gauss)
+        envelope += g[1] * dr * envelope_chord(axes, rho, a + (r + 0.5 + 0.5 * g[0]) * dr).length();
+    for (const auto& c : axes) {
+      const double disc = disc_strip_area(c[1], r_o, a, b);
+      f.tube_area += disc - disc_strip_area(c[1], r_c, a, b);
+      outer += disc;
     }
+    f.sheath_area = std::max(0.0, envelope - outer);
     s.tube_area += f.tube_area;
     s.sheath_area += f.sheath_area;
     s.strips.push_back(f);
@@ -110,20 +126,18 @@ RodSection tca_section(const TcaDesign& design, double z, double bend_direction_
   return s;
 }
 
-RodSection rra_section(const RraDesign& design, double z, int strips, int subrows) {
+RodSection rra_section(const RraDesign& design, double z, int strips) {
   const double r_o = design.outer_radius(z), r_f = chamber_force_radius(design, z);
   const double r_c = in_end_cap(design, z) ? 0.0 : design.chamber_radius(z);
   RodSection s;
   s.chamber_y = {0.0};
   s.chamber_force_area = {kPi * r_f * r_f};
-  const double dy = 2 * r_o / strips, dr = dy / subrows;
+  const double dy = 2 * r_o / strips;
   for (int j = 0; j < strips; ++j) {
     FibreStrip f;
-    f.y = -r_o + (j + 0.5) * dy;
-    for (int r = 0; r < subrows; ++r) {
-      const double y = -r_o + j * dy + (r + 0.5) * dr;
-      f.tube_area += (disc_chord(0, 0, r_o, y).length() - disc_chord(0, 0, r_c, y).length()) * dr;
-    }
+    const double a = -r_o + j * dy, b = a + dy;
+    f.y = 0.5 * (a + b);
+    f.tube_area = disc_strip_area(0, r_o, a, b) - disc_strip_area(0, r_c, a, b);
     s.tube_area += f.tube_area;
     s.strips.push_back(f);
   }

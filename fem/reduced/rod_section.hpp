@@ -5,9 +5,10 @@
 // fibre at distance y from the section's reference point (the 3CA axis, or the
 // RRA axis) has stretch λ(y) = λ0 − κ·y, κ = dθ/dS per reference length, so
 // only the area of each material at each y matters. Each strip keeps the area
-// of every material between y − Δy/2 and y + Δy/2, from exact chord lengths of
-// circles and of the sheath's envelope (the Minkowski sum of the axes'
-// triangle and a disc of radius r_o + t_s), midpoint rule across sub-rows.
+// of every material between y − Δy/2 and y + Δy/2: exact for the circles
+// (tubes, chambers, centre hole), Gauss–Legendre across sub-rows for the
+// sheath's envelope (the Minkowski sum of the axes' triangle and a disc of
+// radius r_o + t_s), so the section is a smooth function of the geometry.
 //
 // What the section leaves out (our definitions, README "reduced model"):
 // - rings carry no axial load: they are discrete, in series with silicone gaps,
@@ -50,7 +51,7 @@ struct RodSection {
 RodSection tca_section(const TcaDesign& design, double z, double bend_direction_rad, int strips = 48, int subrows = 6);
 
 /// The lone RRA's section at height z (axisymmetric: the bending direction is irrelevant).
-RodSection rra_section(const RraDesign& design, double z, int strips = 32, int subrows = 6);
+RodSection rra_section(const RraDesign& design, double z, int strips = 32);
 
 /// Chamber radius for the pressure force at height z: r_c(z) inside the
 /// chamber, r_c at the nearer cap face inside a cap.
