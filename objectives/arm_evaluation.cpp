@@ -1,5 +1,7 @@
 #include "objectives/arm_evaluation.hpp"
 
+#include "objectives/payload_capacity.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -123,12 +125,6 @@ SegmentMeasures measure_segment(const ArmCandidate& c, const EvaluationSettings&
   return out;
 }
 
-// The hanging arm at the working pressure with tip mass m, solved from a nearby state.
-struct PayloadProbe {
-  double mass = 0, angle = 0, utilisation = 0, margin = 0;
-  fem::RodState state;
-  bool ok = false;
-};
 }  // namespace
 
 fem::ArmRod segment_rod(const ArmCandidate& c, const EvaluationSettings& s, int segment) {
@@ -154,10 +150,8 @@ ArmMeasures evaluate_arm(const ArmCandidate& c, const EvaluationSettings& s) {
   out.length_mm = arm.length_mm();
 
   out.min_bending_deg = 1e300;
-  std::array<fem::RraCalibration, 3> cal;
   for (int n = 0; n < 3; ++n) {
-    cal[n] = segment_rra_fem(c, s, n);
-    out.segments[n] = measure_segment(c, s, n, cal[n]);
+    out.segments[n] = measure_segment(c, s, n, segment_rra_fem(c, s, n));
     const SegmentMeasures& m = out.segments[n];
     out.min_bending_deg = std::min(out.min_bending_deg, m.bending_deg_at_working);
     if (m.burst_utilisation >= out.burst_utilisation) {
@@ -169,92 +163,20 @@ ArmMeasures evaluate_arm(const ArmCandidate& c, const EvaluationSettings& s) {
     out.durability_log_strain = std::max(out.durability_log_strain, m.peaks.log_strain);
   }
 
-  // Payload: the hanging arm at the working pressure, tip mass raised until the tip no longer reaches 90°.
-  fem::RodLoad load;
-  load.chamber_pressure_kPa.assign(6, {0.0, 0.0, 0.0});
-  for (int piece : {1, 3, 5}) load.chamber_pressure_kPa[piece] = {0.0, s.working_pressure_kPa, s.working_pressure_kPa};
-  load.gravity_m_s2 = {0.0, -s.gravity_m_s2};
-  load.clamp_angle_rad = kHanging;
-  // "Lifts the tip to horizontal" (spec §4): the tip tangent reaches the lift angle from vertical
-  // with the arm's material within the burst criteria (a), (b) under the payload: the local peaks
-  // of every segment at its pressurised chambers' axial stretch (as in the bending scene) and the
-  // sheath's largest fibre stretch. Without the material limit a heavy mass hanging under the
-  // shoulder would pass: the moment of a tip load vanishes at the tip, so the pressure still curls
-  // the tip's last centimetres to 90°, while the load stretches the arm far past its break.
-  // lift_margin is the smaller margin, in degrees (utilisation scaled by 90°).
-  const double target = s.lift_angle_deg;
-  const auto utilisation_under_load = [&](const fem::RodState& st, const fem::RodLoad& l) {
-    double u = 0;
-    for (int n = 0; n < 3; ++n) {
-      const fem::PieceExtremes e = arm.extremes(st, l, 2 * n + 1);
-      u = std::max(u, utilisation(cal[n].peaks_at(e.chamber_max_stretch), c.tube, s.safety_factor).first);
-      if (std::isfinite(c.sheath.elongation_at_break))
-        u = std::max(u, e.sheath_max_stretch / ((1 + c.sheath.elongation_at_break) / s.safety_factor));
-    }
-    return u;
-  };
-  const auto lift_margin = [&](const PayloadProbe& p) {
-    return p.ok ? std::min(p.angle - target, 90.0 * (1 - p.utilisation)) : -1e300;
-  };
-  const auto probe = [&](double m, const fem::RodState* from) {
-    PayloadProbe p;
-    p.mass = m;
-    fem::RodLoad l = load;
-    l.tip_mass_kg = m;
-    p.state = from ? arm.solve(l, from) : arm.follow(l, s.pressure_steps);
-    p.ok = p.state.converged;
-    p.angle = p.ok ? arm.tip_rotation(p.state, l) * kDeg : -1e300;
-    p.utilisation = p.ok ? utilisation_under_load(p.state, l) : 1e300;
-    p.margin = lift_margin(p);
-    return p;
-  };
-  PayloadProbe low = probe(0.0, nullptr);
-  if (!low.ok) {
-    out.payload_kg = 0;
-    out.payload_note = "the unloaded arm does not reach the working pressure: " + low.state.diagnosis;
-  } else if (low.margin < 0) {
-    // Cannot lift even itself: a negative capacity, extrapolated with the margin's slope in m,
-    // keeps the constraint informative for the optimiser.
-    const PayloadProbe next = probe(0.05, &low.state);
-    const double slope = next.ok ? (next.margin - low.margin) / 0.05 : 0.0;
-    out.payload_kg = slope < 0 ? low.margin / -slope : -1.0;
-    out.payload_note = "the unloaded arm does not lift its tip to horizontal (tip at " + std::to_string(low.angle) +
-                       " deg from vertical)";
-  } else {
-    // March up in mass from the last good state, then regula falsi on the bracket.
-    PayloadProbe high;
-    double step = 0.1;
-    while (true) {
-      PayloadProbe p = probe(low.mass + step, &low.state);
-      if (p.ok && p.margin >= 0) {
-        low = std::move(p);
-        step *= 1.5;
-      } else if (p.ok || step < 1e-3) {
-        high = std::move(p);
-        break;
-      } else {
-        step *= 0.5;  // no equilibrium near the last state at that mass: approach it more slowly
-      }
-    }
-    for (int it = 0; it < 12 && high.mass - low.mass > 1e-4; ++it) {
-      const double m = high.ok ? low.mass + low.margin * (high.mass - low.mass) / (low.margin - high.margin)
-                               : 0.5 * (low.mass + high.mass);
-      PayloadProbe p = probe(std::clamp(m, low.mass + 1e-5, high.mass - 1e-5), &low.state);
-      if (p.ok && p.margin >= 0 && p.margin < 1e-3) {
-        low = std::move(p);
-        break;
-      }
-      if (p.ok && p.margin >= 0) low = std::move(p);
-      else high = std::move(p);
-    }
-    out.payload_kg = low.mass;
-    out.payload_note = !high.ok ? "limit point: beyond it the arm cannot hold the mass"
-                       : low.angle - target <= 90.0 * (1 - low.utilisation)
-                           ? "tip tangent at " + std::to_string(target) + " deg from vertical"
-                           : "burst criteria under the payload (utilisation " + std::to_string(low.utilisation) + ")";
-  }
-  out.payload_tip_x_mm = low.state.x;
-  out.payload_tip_z_mm = low.state.z;
+  PayloadSettings ps;
+  ps.working_pressure_kPa = s.working_pressure_kPa;
+  ps.lift_angle_deg = s.lift_angle_deg;
+  ps.reach_fraction = s.lift_reach_fraction;
+  ps.gravity_m_s2 = s.gravity_m_s2;
+  ps.pressure_steps = s.pressure_steps;
+  if (std::isfinite(c.sheath.elongation_at_break))
+    ps.sheath_allowable_stretch = (1 + c.sheath.elongation_at_break) / s.safety_factor;
+  const PayloadResult payload = payload_capacity(arm, ps);
+  out.payload_kg = payload.capacity_kg;
+  out.payload_note = payload.limited_by;
+  out.payload_lift_pressure_kPa = payload.lift_pressure_kPa;
+  out.payload_tip_x_mm = payload.x_mm;
+  out.payload_tip_z_mm = payload.z_mm;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

@@ -10,11 +10,8 @@
 //   working pressure, gravity perpendicular to the axis and against the bend
 //   (the thesis' 3CA test); the angle between the end faces;
 // - payload: the whole arm hanging from the shoulder (gravity along its axis),
-//   in every segment chambers 2 and 3 at the working pressure (the bend is
-//   planar, towards chamber 1); the largest tip mass whose tip tangent still
-//   reaches 90° from vertical (spec §4) with the material within the burst
-//   criteria under that load (else a heavy mass hanging below the shoulder
-//   would pass while only the tip curls);
+//   chambers 2 and 3 of every segment together; the largest tip mass it lifts
+//   to horizontal at or below the working pressure (payload_capacity.hpp);
 // - burst (safe working pressure, spec §4): along each segment's bending path
 //   the actuator's stretch at the pressurised chambers' axes is mapped, through
 //   the lone RRA's FEM path, to the local peak principal stretch and Cauchy
@@ -43,6 +40,7 @@ struct EvaluationSettings {
   double working_pressure_kPa = 344.7;  // supply pressure: the chambers' maximum
   double target_bending_deg = 90;       // per segment
   double lift_angle_deg = 90;           // payload: tip tangent from vertical
+  double lift_reach_fraction = 0.25;    // payload: held out at least this share of the arm's length
   double safety_factor = 1.5;           // burst criteria (a), (b)
   int rra_mesh_level = 1;               // axisymmetric FEM of each segment's RRA
   int pressure_steps = 12;              // rod continuation steps to the working pressure
@@ -67,7 +65,8 @@ struct ArmMeasures {
   double mass_kg = 0, length_mm = 0;
   fem::ArmRod::PartMasses masses;
   double payload_kg = 0;
-  std::string payload_note;
+  std::string payload_note;               // what limits a heavier payload
+  double payload_lift_pressure_kPa = 0;    // pressure at which the capacity is lifted to horizontal
   std::vector<double> payload_tip_x_mm, payload_tip_z_mm;  // arm shape at the payload capacity
   std::array<SegmentMeasures, 3> segments;
   double min_bending_deg = 0, burst_utilisation = 0, durability_log_strain = 0;
