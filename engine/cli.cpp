@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <iostream>
 
+#include "engine/design/design_command.hpp"
 #include "engine/material_command.hpp"
 #include "engine/rra_report.hpp"
 #include "engine/scene_config.hpp"
@@ -130,6 +131,10 @@ int run_cli(int argc, char** argv) {
   std::string schema_scene = "rra";
   schema->add_option("--scene", schema_scene, "which scene's keys: rra, tca or spl (default rra)")
       ->check(CLI::IsMember({"rra", "tca", "spl"}));
+  std::string design_file;
+  auto* design = app.add_subcommand("design", "the main job: requirements in, optimal design out (e.g. configs/thesis_requirements.json)");
+  design->add_option("requirements", design_file, "requirements JSON file")->required();
+  design->add_option("-o,--output", output_dir, "output directory (overrides output.directory)");
   add_material_command(app);
 
   try {
@@ -143,6 +148,7 @@ int run_cli(int argc, char** argv) {
   if (threads > 0) fem::set_thread_count(threads);
   try {
     if (*sim) return simulate(scene_file, output_dir, mesh_level, element_order);
+    if (*design) return run_design(design_file, output_dir);
     if (*exp) return export_deck(scene_file, deck_path, deck_pressure_kPa, mesh_level);
     if (*schema) {
       print_schema(schema_scene);

@@ -1,0 +1,15 @@
+#pragma once
+// `softarm design <requirements.json>`: the main job. Evaluates the thesis
+// design, searches the design space with the configured optimiser on the
+// reduced model (printing every evaluation and appending it to history.csv as
+// it goes), re-checks the optimum at the check fidelity, prints the optimal
+// parameters and every constraint's margin, and writes report.html (SVG plots),
+// summary.json and the optimum's payload pose as VTU.
+#include <string>
+
+namespace softarm::engine {
+
+/// Returns the process exit code (0: a design was returned, feasible or not, as printed).
+int run_design(const std::string& config_file, const std::string& output_override);
+
+}  // namespace softarm::engine

@@ -1,0 +1,196 @@
+#include "engine/design/design_config.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "fem/core/input_error.hpp"
+#include "fem/core/json_reader.hpp"
+#include "fem/materials/material.hpp"
+
+namespace softarm::engine {
+namespace {
+using fem::Range;
+
+struct VariableInfo {
+  const char* name;
+  optimise::VariableKind kind;
+  double baseline, lo, hi;  // baseline = thesis value; [lo, hi] = what the model accepts
+  const char* unit;
+  const char* doc;
+};
+
+// Baselines: the thesis design (Tables 7 and 11).
+const std::vector<VariableInfo>& infos() {
+  using K = optimise::VariableKind;
+  static const std::vector<VariableInfo> v = {
+      {"wall_thickness_normalised", K::continuous, 0.466, 0.1, 0.8, "1", "t_w / r_b of every RRA"},
+      {"end_cap_thickness_normalised", K::continuous, 0.25, 0.05, 1.0, "1", "t_c / r_b"},
+      {"ring_count", K::integer, 30, 0, 80, "rings", "n_r per RRA (eq 8 with d_ref = 2 mm: r̂ = n_r·2/160)"},
+      {"ring_thickness_normalised", K::continuous, 0.4, 0.05, 0.95, "1", "d_r / (l / n_r); 1 = rings touch"},
+      {"actuator_spacing_mm", K::continuous, 3, 0.5, 10, "mm", "gap between neighbouring RRAs' outer surfaces"},
+      {"taper_ratio", K::continuous, 0.5, 0.25, 1.0, "1", "t_r = (r_b)_3 / (r_t)_1 (eq 6)"},
+      {"tube_material", K::categorical, 2, 0, 0, "", "RRA tube silicone"},
+      {"sheath_material", K::categorical, 2, 0, 0, "", "3CA core and sheath silicone"},
+  };
+  return v;
+}
+
+std::string show(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+
+objectives::EvaluationSettings read_model(fem::JsonReader& m, const objectives::EvaluationSettings& defaults,
+                                          const std::string& what) {
+  objectives::EvaluationSettings s = defaults;
+  s.rra_mesh_level = m.integer("rra_mesh_level", defaults.rra_mesh_level, Range::closed(1, 4),
+                               what + ": mesh level of each segment's axisymmetric RRA FEM");
+  s.pressure_steps = m.integer("pressure_steps", defaults.pressure_steps, Range::closed(2, 200),
+                               what + ": rod continuation steps to the working pressure");
+  s.rod_nodes_per_segment = m.integer("rod_nodes_per_segment", defaults.rod_nodes_per_segment, Range::closed(5, 400),
+                                      what + ": rod nodes per 3CA segment");
+  m.finish();
+  return s;
+}
+}  // namespace
+
+const std::vector<std::string>& design_variable_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const auto& i : infos()) n.push_back(i.name);
+    return n;
+  }();
+  return names;
+}
+
+DesignConfig read_design_config(const nlohmann::json& document) {
+  DesignConfig c;
+  fem::JsonReader root(document, "");
+  {
+    auto r = root.object("requirements", "what the arm must achieve (spec §3)");
+    Requirements& q = c.requirements;
+    q.max_mass_kg = r.number("max_mass_kg", 2.0, Range::positive(), "weight limit, connectors included (kg)");
+    q.length_m = r.number("length_m", 0.6, Range::positive(), "arm length, shoulder to tip (m): fixes the segment length");
+    q.min_payload_kg = r.number("min_payload_kg", 0.5, Range::non_negative(),
+                                "payload capacity at the tip (kg; definition: README, spec §4)");
+    q.bending_per_segment_deg = r.number("bending_per_segment_deg", 90, Range::open(0, 360),
+                                         "bending angle each segment must reach at the working pressure (deg)");
+    q.max_pressure_kPa = r.number("max_pressure_kPa", 344.7, Range::open(0, 2000),
+                                  "supply (working) pressure of every chamber (kPa)");
+    q.durability_cycles = r.number("durability_cycles", 1e6, Range::positive(), "required RRA life (cycles)");
+    q.durability_reference_pressure_kPa =
+        r.number("durability_reference_pressure_kPa", 206.8, Range::positive(),
+                 "pressure of the measured fatigue point: the thesis RRA cycled 0 <-> this (kPa)");
+    q.durability_reference_cycles = r.number("durability_reference_cycles", 1.1e6, Range::positive(),
+                                             "cycles the thesis RRA lasted at that pressure");
+    r.finish();
+    if (q.durability_cycles > q.durability_reference_cycles)
+      throw fem::InputError("requirements.durability_cycles",
+                            "value " + show(q.durability_cycles) + " exceeds the only measured fatigue point (" +
+                                show(q.durability_reference_cycles) +
+                                " cycles): without a strain-life curve softarm cannot show it; valid: <= " +
+                                show(q.durability_reference_cycles));
+  }
+  c.objective = root.choice("objective", "minimise_mass", {"minimise_mass", "maximise_payload"},
+                            "what the optimiser minimises; the requirements are constraints");
+  {
+    auto g = root.object("baseline_geometry",
+                         "SPL geometry keys (softarm schema --scene spl) held fixed, and the start of the optimised ones");
+    c.baseline_geometry = document.contains("baseline_geometry") ? document["baseline_geometry"] : nlohmann::json::object();
+    // Validated by building the baseline design (engine/design/design_problem.cpp); keys are checked there.
+    (void)g;
+  }
+  {
+    auto m = root.object("materials", "baseline materials");
+    c.baseline_tube = m.string("tube", "dragon_skin_30", "RRA tube material (built-in name)");
+    c.baseline_sheath = m.string("sheath", "dragon_skin_30", "core and sheath material (built-in name)");
+    m.finish();
+    fem::builtin_material(c.baseline_tube, "materials.tube");
+    fem::builtin_material(c.baseline_sheath, "materials.sheath");
+  }
+  {
+    auto space = root.object("design_space", "the variables: {\"min\": .., \"max\": ..} or {\"choices\": [..]}");
+    for (const auto& info : infos()) {
+      if (!space.has(info.name)) continue;
+      const std::string field = space.field(info.name);
+      auto v = space.object(info.name, info.doc);
+      DesignVariable d;
+      d.variable.name = info.name;
+      d.variable.kind = info.kind;
+      d.variable.unit = info.unit;
+      if (info.kind == optimise::VariableKind::categorical) {
+        if (!v.has("choices")) throw fem::InputError(field + ".choices", "required list of built-in material names is missing");
+        const auto& list = v.raw("choices");
+        if (!list.is_array() || list.empty())
+          throw fem::InputError(field + ".choices", "expected a non-empty list of built-in material names");
+        for (std::size_t i = 0; i < list.size(); ++i) {
+          const std::string name = list[i].is_string() ? list[i].get<std::string>() : std::string("?");
+          fem::builtin_material(name, field + ".choices[" + std::to_string(i) + "]");
+          d.variable.choices.push_back(name);
+        }
+        const std::string base = std::string(info.name) == "tube_material" ? c.baseline_tube : c.baseline_sheath;
+        const auto it = std::find(d.variable.choices.begin(), d.variable.choices.end(), base);
+        d.baseline = it == d.variable.choices.end() ? 0 : static_cast<double>(it - d.variable.choices.begin());
+      } else {
+        d.variable.lower = v.number("min", Range::closed(info.lo, info.hi), std::string("lower bound of ") + info.name);
+        d.variable.upper = v.number("max", Range::closed(info.lo, info.hi), std::string("upper bound of ") + info.name);
+        if (!(d.variable.upper > d.variable.lower))
+          throw fem::InputError(field + ".max", "value " + show(d.variable.upper) + " must exceed min = " +
+                                                    show(d.variable.lower) + " (impossible bounds)");
+        if (info.kind == optimise::VariableKind::integer &&
+            (d.variable.lower != std::round(d.variable.lower) || d.variable.upper != std::round(d.variable.upper)))
+          throw fem::InputError(field, "integer variable: min and max must be whole numbers");
+        d.baseline = std::clamp(info.baseline, d.variable.lower, d.variable.upper);
+      }
+      v.finish();
+      c.variables.push_back(d);
+    }
+    space.finish();
+    if (c.variables.empty()) throw fem::InputError("design_space", "no variable given; valid names: ring_count, ...");
+  }
+  {
+    auto m = root.object("model", "search fidelity (the reduced rod model + each segment's RRA FEM)");
+    c.model = read_model(m, objectives::EvaluationSettings{}, "search");
+    objectives::EvaluationSettings fine;
+    fine.rra_mesh_level = 2;
+    fine.pressure_steps = 24;
+    fine.rod_nodes_per_segment = 49;
+    auto k = root.object("check", "fidelity of the final design's re-check");
+    c.check = read_model(k, fine, "check");
+    for (auto* s : {&c.model, &c.check}) {
+      s->working_pressure_kPa = c.requirements.max_pressure_kPa;
+      s->target_bending_deg = c.requirements.bending_per_segment_deg;
+    }
+    auto sf = root.object("criteria", "burst criteria (spec §4)");
+    const double factor = sf.number("safety_factor", 1.5, Range::at_least(1), "divides strength and elongation at break");
+    sf.finish();
+    c.model.safety_factor = c.check.safety_factor = factor;
+  }
+  {
+    auto o = root.object("optimiser", "algorithm and budget");
+    optimise::Options& p = c.optimiser;
+    p.algorithm = o.choice("algorithm", "nlopt:cobyla", optimise::algorithm_names(), "NLopt or Ipopt algorithm");
+    p.max_evaluations = o.integer("max_evaluations", 100, Range::closed(1, 100000), "real model evaluations, in all");
+    p.starts = o.integer("starts", 1, Range::closed(1, 1000), "multi-start: local searches from a Latin-hypercube sample");
+    p.seed = static_cast<unsigned>(o.integer("seed", 1, Range::closed(0, 1e9), "random seed of starts and ISRES"));
+    p.relative_tolerance = o.number("relative_tolerance", 1e-3, Range::open(0, 1), "stop tolerance on x and f");
+    p.finite_difference_step = o.number("finite_difference_step", 1e-2, Range::open(0, 0.5),
+                                        "forward-difference step, fraction of each variable's range");
+    p.categorical_keep = o.integer("categorical_keep", 2, Range::closed(1, 100),
+                                   "material combinations optimised in full after screening");
+    o.finish();
+  }
+  {
+    auto o = root.object("output", "where the report goes");
+    c.output_directory = o.string("directory", "out/design", "output directory");
+    o.finish();
+  }
+  root.finish();
+  return c;
+}
+
+DesignConfig load_design_config(const std::string& file_name) { return read_design_config(fem::load_json_file(file_name)); }
+
+}  // namespace softarm::engine

@@ -1,0 +1,52 @@
+#pragma once
+// The requirements config of `softarm design` (configs/thesis_requirements.json):
+// what the arm must do (spec §3), which design parameters the optimiser may
+// change and within which bounds, the model settings and the optimiser's.
+// Read with fem::JsonReader: unknown keys, missing keys and out-of-range values
+// are rejected naming the field; `softarm schema --design` lists every key.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "engine/optimiser/optimiser.hpp"
+#include "objectives/arm_evaluation.hpp"
+
+namespace softarm::engine {
+
+struct Requirements {
+  double max_mass_kg = 2.0;
+  double length_m = 0.6;
+  double min_payload_kg = 0.5;
+  double bending_per_segment_deg = 90;
+  double max_pressure_kPa = 344.7;          // supply: every chamber's working pressure
+  double durability_reference_pressure_kPa = 206.8;  // the thesis RRA's cycling test (1.1 M cycles)
+  double durability_reference_cycles = 1.1e6;
+  double durability_cycles = 1e6;           // required; met when ε ≤ ε_ref (the only measured point)
+};
+
+/// One design variable: the name of a geometry key (or "tube_material" /
+/// "sheath_material"), its bounds or choices, and the baseline (thesis) value.
+struct DesignVariable {
+  optimise::Variable variable;
+  double baseline = 0;  // physical units; categorical: index of the baseline choice
+};
+
+struct DesignConfig {
+  Requirements requirements;
+  std::string objective = "minimise_mass";  // or "maximise_payload"
+  std::vector<DesignVariable> variables;    // in a fixed order (design_variable_names())
+  nlohmann::json baseline_geometry;         // the SPL geometry keys not optimised (and the baselines)
+  std::string baseline_tube = "dragon_skin_30", baseline_sheath = "dragon_skin_30";
+  objectives::EvaluationSettings model;     // search fidelity
+  objectives::EvaluationSettings check;     // the final design's re-check (higher fidelity)
+  optimise::Options optimiser;
+  std::string output_directory = "out/design";
+};
+
+/// The variables softarm knows, in order.
+const std::vector<std::string>& design_variable_names();
+
+DesignConfig read_design_config(const nlohmann::json& document);
+DesignConfig load_design_config(const std::string& file_name);
+
+}  // namespace softarm::engine

@@ -1,0 +1,95 @@
+#include "engine/design/design_problem.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "fem/core/input_error.hpp"
+#include "fem/core/json_reader.hpp"
+
+namespace softarm::engine {
+
+std::vector<double> baseline_values(const DesignConfig& config) {
+  std::vector<double> x;
+  for (const auto& v : config.variables) x.push_back(v.baseline);
+  return x;
+}
+
+objectives::ArmCandidate make_candidate(const DesignConfig& config, const std::vector<double>& x) {
+  nlohmann::json g = config.baseline_geometry;
+  std::string tube = config.baseline_tube, sheath = config.baseline_sheath;
+  for (std::size_t i = 0; i < config.variables.size(); ++i) {
+    const auto& v = config.variables[i].variable;
+    if (v.name == "tube_material") tube = v.choices.at(static_cast<std::size_t>(std::lround(x[i])));
+    else if (v.name == "sheath_material") sheath = v.choices.at(static_cast<std::size_t>(std::lround(x[i])));
+    else if (v.name == "ring_count") {
+      g.erase("ring_count_normalised");
+      g["ring_count"] = static_cast<int>(std::lround(x[i]));
+    } else {
+      g[v.name] = x[i];
+    }
+  }
+  // The segment length follows from the arm length and the connectors (spec §1: 3·l + 3 connectors).
+  const double connector = g.value("connector_thickness_mm", 40.0);
+  g["length_mm"] = (config.requirements.length_m * 1000 - 3 * connector) / 3;
+  objectives::ArmCandidate c;
+  fem::JsonReader reader(g, "baseline_geometry");
+  c.design = fem::read_spl_design(reader);
+  reader.finish();
+  c.tube = fem::builtin_material(tube, "materials.tube");
+  c.sheath = fem::builtin_material(sheath, "materials.sheath");
+  c.rings = fem::builtin_material("digital_abs", "materials.rings");
+  c.connector = c.rings;
+  return c;
+}
+
+ConstraintValues constraints_of(const DesignConfig& config, const objectives::ArmMeasures& m, double reference_strain) {
+  const Requirements& q = config.requirements;
+  ConstraintValues c;
+  c.names = {"mass", "payload", "bending", "burst", "durability"};
+  c.values = {m.mass_kg / q.max_mass_kg - 1,
+              q.min_payload_kg > 0 ? 1 - m.payload_kg / q.min_payload_kg : -m.payload_kg,
+              1 - m.min_bending_deg / q.bending_per_segment_deg,
+              m.burst_utilisation - 1,
+              m.durability_log_strain / reference_strain - 1};
+  return c;
+}
+
+double objective_of(const DesignConfig& config, const objectives::ArmMeasures& m) {
+  return config.objective == "maximise_payload" ? -m.payload_kg : m.mass_kg;
+}
+
+optimise::Problem design_problem(const DesignConfig& config, double reference_strain,
+                                 std::function<void(const std::vector<double>&, const objectives::ArmMeasures&)> measured) {
+  optimise::Problem p;
+  for (const auto& v : config.variables) p.variables.push_back(v.variable);
+  p.constraint_names = constraints_of(config, {}, reference_strain).names;
+  p.evaluate = [&config, reference_strain, measured](const std::vector<double>& x) {
+    optimise::Evaluation e;
+    try {
+      const objectives::ArmMeasures m = objectives::evaluate_arm(make_candidate(config, x), config.model);
+      e.objective = objective_of(config, m);
+      e.constraints = constraints_of(config, m, reference_strain).values;
+      if (measured) measured(x, m);
+    } catch (const fem::InputError& err) {
+      e.ok = false;  // a geometry that cannot be built is an infeasible point, with the reason
+      e.failure_reason = err.what();
+    }
+    return e;
+  };
+  return p;
+}
+
+std::string describe(const DesignConfig& config, const std::vector<double>& x) {
+  std::ostringstream s;
+  for (std::size_t i = 0; i < config.variables.size(); ++i) {
+    const auto& v = config.variables[i].variable;
+    if (i) s << ", ";
+    s << v.name << " = ";
+    if (v.kind == optimise::VariableKind::categorical) s << v.choices.at(static_cast<std::size_t>(std::lround(x[i])));
+    else if (v.kind == optimise::VariableKind::integer) s << std::lround(x[i]);
+    else s << x[i] << (v.unit == "1" || v.unit.empty() ? "" : " " + v.unit);
+  }
+  return s.str();
+}
+
+}  // namespace softarm::engine

@@ -1,0 +1,40 @@
+#pragma once
+// The bridge between the requirements and the optimiser: a design vector x
+// (design_config.hpp's variables, physical units) becomes an SPL candidate,
+// the candidate's measures (objectives/arm_evaluation.hpp) become the
+// objective and the dimensionless constraints g ≤ 0:
+//   mass        m / m_max − 1
+//   payload     1 − payload / payload_min
+//   bending     1 − min_n θ_n(p_w) / θ_target
+//   burst       max_n utilisation_n − 1   (criteria (a), (b), (c), spec §4)
+//   durability  ε_peak / ε_ref − 1        (ε_ref: thesis RRA at its cycling pressure)
+#include <string>
+#include <vector>
+
+#include "engine/design/design_config.hpp"
+#include "engine/optimiser/optimiser.hpp"
+#include "objectives/arm_evaluation.hpp"
+
+namespace softarm::engine {
+
+/// A candidate from the variables' values (others from the baseline). Throws
+/// fem::InputError when the geometry cannot be built (touching rings, ...).
+objectives::ArmCandidate make_candidate(const DesignConfig& config, const std::vector<double>& x);
+/// The baseline (thesis) design's values of the variables.
+std::vector<double> baseline_values(const DesignConfig& config);
+
+struct ConstraintValues {
+  std::vector<std::string> names;
+  std::vector<double> values;  // g_i, feasible when ≤ 0
+};
+ConstraintValues constraints_of(const DesignConfig& config, const objectives::ArmMeasures& m, double reference_strain);
+double objective_of(const DesignConfig& config, const objectives::ArmMeasures& m);
+
+/// The optimiser's problem. `measured` receives every successful evaluation (for the report).
+optimise::Problem design_problem(const DesignConfig& config, double reference_strain,
+                                 std::function<void(const std::vector<double>&, const objectives::ArmMeasures&)> measured);
+
+/// "ring_count = 30, taper_ratio = 0.5, ..., tube_material = dragon_skin_30".
+std::string describe(const DesignConfig& config, const std::vector<double>& x);
+
+}  // namespace softarm::engine

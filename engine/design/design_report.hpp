@@ -1,0 +1,34 @@
+#pragma once
+// What `softarm design` writes: report.html (self-contained, SVG plots: the
+// pressure–bending curves of the optimum and of the thesis design, the
+// constraint margins, the convergence history, the payload pose), summary.json
+// and the optimum's payload pose as a VTU polyline for ParaView.
+#include <string>
+#include <vector>
+
+#include "engine/design/design_config.hpp"
+#include "engine/optimiser/optimiser.hpp"
+#include "objectives/arm_evaluation.hpp"
+
+namespace softarm::engine {
+
+struct HistoryPoint {
+  int evaluation = 0;
+  double objective = 0;  // NaN for a failed evaluation
+  bool feasible = false;
+  std::string phase;
+};
+
+struct DesignRun {
+  const DesignConfig* config = nullptr;
+  double reference_strain = 0, check_reference_strain = 0;
+  std::vector<double> thesis_x, optimum_x;
+  objectives::ArmMeasures thesis, optimum, check;
+  optimise::Result result;
+  std::vector<HistoryPoint> history;
+  double seconds = 0;
+};
+
+void write_design_outputs(const DesignRun& run);
+
+}  // namespace softarm::engine
