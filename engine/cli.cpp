@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "engine/design/design_command.hpp"
+#include "engine/optimiser/optimiser.hpp"
 #include "engine/material_command.hpp"
 #include "engine/rra_report.hpp"
 #include "engine/scene_config.hpp"
@@ -132,9 +133,15 @@ int run_cli(int argc, char** argv) {
   schema->add_option("--scene", schema_scene, "which scene's keys: rra, tca or spl (default rra)")
       ->check(CLI::IsMember({"rra", "tca", "spl"}));
   std::string design_file;
+  DesignOverrides design_overrides;
   auto* design = app.add_subcommand("design", "the main job: requirements in, optimal design out (e.g. configs/thesis_requirements.json)");
   design->add_option("requirements", design_file, "requirements JSON file")->required();
-  design->add_option("-o,--output", output_dir, "output directory (overrides output.directory)");
+  design->add_option("-o,--output", design_overrides.output_directory, "output directory (overrides output.directory)");
+  design->add_option("--algorithm", design_overrides.algorithm, "optimiser algorithm (overrides optimiser.algorithm)")
+      ->check(CLI::IsMember(optimise::algorithm_names()));
+  design->add_option("--max-evaluations", design_overrides.max_evaluations,
+                     "evaluation budget (overrides optimiser.max_evaluations)")
+      ->check(CLI::Range(1, 100000));
   add_material_command(app);
 
   try {
@@ -148,7 +155,7 @@ int run_cli(int argc, char** argv) {
   if (threads > 0) fem::set_thread_count(threads);
   try {
     if (*sim) return simulate(scene_file, output_dir, mesh_level, element_order);
-    if (*design) return run_design(design_file, output_dir);
+    if (*design) return run_design(design_file, design_overrides);
     if (*exp) return export_deck(scene_file, deck_path, deck_pressure_kPa, mesh_level);
     if (*schema) {
       print_schema(schema_scene);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <future>
 #include <cmath>
 
 namespace softarm::objectives {
@@ -150,8 +151,11 @@ ArmMeasures evaluate_arm(const ArmCandidate& c, const EvaluationSettings& s) {
   out.length_mm = arm.length_mm();
 
   out.min_bending_deg = 1e300;
+  // The three segments' RRA FEM paths are independent: run them concurrently.
+  std::array<std::future<fem::RraCalibration>, 3> fem_paths;
+  for (int n = 0; n < 3; ++n) fem_paths[n] = std::async(std::launch::async, [&, n] { return segment_rra_fem(c, s, n); });
   for (int n = 0; n < 3; ++n) {
-    out.segments[n] = measure_segment(c, s, n, segment_rra_fem(c, s, n));
+    out.segments[n] = measure_segment(c, s, n, fem_paths[n].get());
     const SegmentMeasures& m = out.segments[n];
     out.min_bending_deg = std::min(out.min_bending_deg, m.bending_deg_at_working);
     if (m.burst_utilisation >= out.burst_utilisation) {

@@ -44,7 +44,7 @@ struct EvaluationSettings {
   double safety_factor = 1.5;           // burst criteria (a), (b)
   int rra_mesh_level = 1;               // axisymmetric FEM of each segment's RRA
   int pressure_steps = 12;              // rod continuation steps to the working pressure
-  int rod_nodes_per_segment = 25;
+  int rod_nodes_per_segment = 17;
   double gravity_m_s2 = 9.80665;
 };
 

@@ -37,10 +37,12 @@ void print_constraints(const ConstraintValues& c) {
 }
 }  // namespace
 
-int run_design(const std::string& file, const std::string& output_override) {
+int run_design(const std::string& file, const DesignOverrides& overrides) {
   const auto t0 = Clock::now();
   DesignConfig config = load_design_config(file);
-  if (!output_override.empty()) config.output_directory = output_override;
+  if (!overrides.output_directory.empty()) config.output_directory = overrides.output_directory;
+  if (!overrides.algorithm.empty()) config.optimiser.algorithm = overrides.algorithm;
+  if (overrides.max_evaluations > 0) config.optimiser.max_evaluations = overrides.max_evaluations;
   std::filesystem::create_directories(config.output_directory);
   std::cout << "softarm design: " << file << "\nobjective: " << config.objective << "; requirements: mass <= "
             << config.requirements.max_mass_kg << " kg, payload >= " << config.requirements.min_payload_kg

@@ -9,7 +9,13 @@
 
 namespace softarm::engine {
 
+/// Command-line overrides of the config (empty / 0: keep the config's).
+struct DesignOverrides {
+  std::string output_directory, algorithm;
+  int max_evaluations = 0;
+};
+
 /// Returns the process exit code (0: a design was returned, feasible or not, as printed).
-int run_design(const std::string& config_file, const std::string& output_override);
+int run_design(const std::string& config_file, const DesignOverrides& overrides);
 
 }  // namespace softarm::engine
