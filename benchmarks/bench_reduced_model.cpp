@@ -1,0 +1,135 @@
+// Benchmark (not a test): the reduced rod model against the FEM on the thesis
+// designs. Prints, with wall times: the lone thesis RRA's extension (rod
+// uncalibrated vs the axisymmetric FEM), the thesis 3CA's bending curve by the
+// rod (and, with --with-3d, by the 3D Hex27 FEM of configs/tca_thesis.json on
+// the same pressures: minutes to tens of minutes), and the whole arm's mass and
+// payload capacity.
+//
+// Usage (from the repository root): bench_reduced_model [--with-3d] [--repeat N]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <vector>
+
+#include "engine/scene_config.hpp"
+#include "fem/reduced/rra_calibration.hpp"
+#include "objectives/arm_evaluation.hpp"
+#include "objectives/payload_capacity.hpp"
+
+using namespace softarm;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool with_3d = false;
+  int repeat = 5;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--with-3d")) with_3d = true;
+    else if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
+  }
+  const fem::Material ds30 = fem::builtin_material("dragon_skin_30", "bench"), abs = fem::builtin_material("digital_abs", "bench");
+
+  // 1. Lone RRA: rod vs axisymmetric FEM (level 1).
+  fem::RraSceneSpec rra;
+  rra.tube_material = ds30;
+  rra.ring_material = abs;
+  rra.path.max_pressure_kPa = 206.8;
+  rra.path.output_pressures_kPa = {68.9, 137.9, 206.8};
+  const fem::RraCalibration cal = fem::calibrate_rra(rra);
+  const fem::FibreLaw law(*ds30.law);
+  std::vector<double> rod_times;
+  double rod_ext = 0;
+  for (int k = 0; k < repeat; ++k) {
+    const auto t = Clock::now();
+    rod_ext = fem::rod_rra_extension_mm(rra.design, law, 206.8, 1.0);
+    rod_times.push_back(since(t));
+  }
+  std::printf("thesis RRA at 206.8 kPa: FEM (axisymmetric Q2/P1 level 1, %d dofs) %.2f mm in %.3f s; rod %.2f mm "
+              "(%+.1f %%) in %.4f s (median of %d)\n",
+              cal.dofs, cal.fem_extension_mm.back(), cal.fem_seconds, rod_ext,
+              100 * (rod_ext / cal.fem_extension_mm.back() - 1), median(rod_times), repeat);
+
+  // 2. Thesis 3CA: top clamped, chambers 2 and 3, gravity against the bend.
+  fem::ArmRodSpec spec;
+  spec.pieces = {fem::RodPiece{}};
+  spec.tube = spec.sheath = ds30;
+  spec.rings = abs;
+  spec.nodes_per_segment = 17;
+  const fem::ArmRod rod(spec);
+  fem::RodLoad load;
+  load.chamber_pressure_kPa = {{0, 344.7, 344.7}};
+  load.gravity_m_s2 = {-9.80665, 0};
+  std::vector<double> p, angle, times;
+  for (int k = 0; k < repeat; ++k) {
+    p.clear();
+    angle.clear();
+    const auto t = Clock::now();
+    rod.follow(load, 10, [&](double f, const fem::RodState& st) {
+      p.push_back(f * 344.7);
+      angle.push_back(rod.tip_rotation(st, load) * 180 / M_PI);
+    });
+    times.push_back(since(t));
+  }
+  double p90 = -1;
+  for (std::size_t i = 1; i < p.size(); ++i)
+    if (p90 < 0 && angle[i] >= 90) p90 = p[i - 1] + (90 - angle[i - 1]) * (p[i] - p[i - 1]) / (angle[i] - angle[i - 1]);
+  std::printf("thesis 3CA by the rod: %.3f s (median of %d), mass %.1f g, 90 deg at %.1f kPa\n", median(times), repeat,
+              rod.mass_kg() * 1e3, p90);
+  std::printf("  pressure_kPa  rod_deg%s\n", with_3d ? "  fem3d_deg" : "");
+  std::vector<double> fem_angle(p.size(), std::nan(""));
+  double fem_seconds = 0, fem_p90 = -1;
+  int fem_dofs = 0;
+  if (with_3d) {
+    engine::SceneConfig config = engine::load_scene_config("configs/tca_thesis.json");
+    config.tca.output_pressures_kPa = p;
+    const auto t = Clock::now();
+    const fem::TcaResult r = fem::run_tca_scene(config.tca);
+    fem_seconds = since(t);
+    fem_dofs = r.dofs;
+    for (const auto& s : r.curve)
+      for (std::size_t i = 0; i < p.size(); ++i)
+        if (std::abs(s.pressure_kPa - p[i]) < 1e-6) fem_angle[i] = s.bending_angle_deg;
+    if (const auto q = fem::pressure_at_bending(r.states, 90)) fem_p90 = *q;
+  }
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    std::printf("  %12.2f  %7.2f", p[i], angle[i]);
+    if (with_3d) std::printf("  %9.2f", fem_angle[i]);
+    std::printf("\n");
+  }
+  if (with_3d)
+    std::printf("3D FEM (%d dofs): %.1f s, 90 deg at %.1f kPa; rod/3D cost ratio 1/%.0f, 90-deg pressure %+.1f %%\n",
+                fem_dofs, fem_seconds, fem_p90, fem_seconds / median(times), 100 * (p90 / fem_p90 - 1));
+
+  // 3. The thesis arm: mass and payload capacity.
+  objectives::ArmCandidate arm;
+  nlohmann::json g = {{"wall_thickness_normalised", 0.466}, {"end_cap_thickness_normalised", 0.25},
+                      {"ring_count_normalised", 0.375}, {"ring_thickness_normalised", 0.4}};
+  fem::JsonReader reader(g, "geometry");
+  arm.design = fem::read_spl_design(reader);
+  arm.tube = arm.sheath = ds30;
+  arm.rings = arm.connector = abs;
+  objectives::EvaluationSettings settings;
+  const fem::ArmRod whole = objectives::arm_rod(arm, settings);
+  objectives::PayloadSettings ps;
+  ps.sheath_allowable_stretch = (1 + ds30.elongation_at_break) / settings.safety_factor;
+  std::vector<double> payload_times;
+  objectives::PayloadResult payload;
+  for (int k = 0; k < repeat; ++k) {
+    const auto t = Clock::now();
+    payload = objectives::payload_capacity(whole, ps);
+    payload_times.push_back(since(t));
+  }
+  std::printf("thesis arm: mass %.3f kg, payload capacity %.3f kg at %.1f kPa (%s), %d rod solves, %.3f s (median of %d)\n",
+              whole.mass_kg(), payload.capacity_kg, payload.lift_pressure_kPa, payload.limited_by.c_str(),
+              payload.rod_solves, median(payload_times), repeat);
+  return 0;
+}
