@@ -32,7 +32,8 @@ double ForceFactor::at(double p) const {
 }
 
 ArmRod::ArmRod(ArmRodSpec spec)
-    : spec_(std::move(spec)), tube_law_(*spec_.tube.law), sheath_law_(*spec_.sheath.law) {
+    : spec_(std::move(spec)), tube_law_(*spec_.tube.law), sheath_law_(*spec_.sheath.law),
+      same_law_(spec_.tube.law == spec_.sheath.law) {
   double s0 = 0;
   for (int p = 0; p < static_cast<int>(spec_.pieces.size()); ++p) {
     const RodPiece& piece = spec_.pieces[p];
@@ -135,7 +136,7 @@ double ArmRod::shoot(double m0, const RodLoad& load, RodState& st, std::string& 
   const auto section = [&](int j, double theta, double m, SectionState guess) -> SectionState {
     if (nodes_[j].rigid) return {1.0, 0.0, true, {}};
     const double axial = fx[j] * std::cos(theta) + fz[j] * std::sin(theta);
-    return solve_section(nodes_[j].section, {&tube_law_, &sheath_law_}, chamber_forces(j, load), axial, m, guess);
+    return solve_section(nodes_[j].section, laws(), chamber_forces(j, load), axial, m, guess);
   };
   SectionState s = section(0, load.clamp_angle_rad, m0, {stretch_guess, 0.0, true, {}});
   if (!s.ok) return failure = s.failure, std::nan("");

@@ -104,6 +104,8 @@ class ArmRod {
   };
   ArmRodSpec spec_;
   FibreLaw tube_law_, sheath_law_;
+  bool same_law_ = false;  // tube and sheath of one material: one table lookup per fibre
+  SectionLaws laws() const { return {&tube_law_, same_law_ ? &tube_law_ : &sheath_law_}; }
   std::vector<Node> nodes_;
   std::vector<double> s_;             // reference arc length per node
   std::vector<double> interval_mass_; // kg between node j and j + 1

@@ -52,4 +52,18 @@ double FibreLaw::tangent(double lambda) const {
   return (d00 * p_[i] + d01 * p_[i + 1]) / step_ + d10 * dp_[i] + d11 * dp_[i + 1];
 }
 
+void FibreLaw::evaluate(double lambda, double& stress, double& tangent) const {
+  const auto [i, t] = locate(lo_, step_, p_.size(), lambda);
+  if (t < 0 || t > 1) {
+    stress = this->stress(lambda);
+    tangent = this->tangent(lambda);
+    return;
+  }
+  const double u = 1 - t;
+  const double h00 = (1 + 2 * t) * u * u, h10 = t * u * u, h01 = t * t * (3 - 2 * t), h11 = t * t * (t - 1);
+  const double d00 = 6 * t * (t - 1), d10 = u * (1 - 3 * t), d11 = t * (3 * t - 2);
+  stress = h00 * p_[i] + h10 * step_ * dp_[i] + h01 * p_[i + 1] + h11 * step_ * dp_[i + 1];
+  tangent = d00 * (p_[i] - p_[i + 1]) / step_ + d10 * dp_[i] + d11 * dp_[i + 1];
+}
+
 }  // namespace softarm::fem

@@ -24,6 +24,8 @@ class FibreLaw {
   double stress(double lambda) const;
   /// dP/dλ, MPa: the exact derivative of stress().
   double tangent(double lambda) const;
+  /// Both at once (one table lookup): the rod's sections call this ~10^6 times per design.
+  void evaluate(double lambda, double& stress, double& tangent) const;
   /// Small-strain Young's modulus dP/dλ at λ = 1 (3μ0 for an incompressible law).
   double initial_modulus() const { return tangent(1.0); }
   double lambda_min() const { return lo_; }

@@ -17,10 +17,19 @@ Residual residual(const RodSection& s, const SectionLaws& laws, double f_sum, do
   double n = 0, m = 0, a = 0, b = 0, c = 0;  // ∫P, ∫yP, ∫P', ∫yP', ∫y²P'
   for (const auto& f : s.strips) {
     const double l = l0 - kappa * f.y;
-    double p = f.tube_area * laws.tube->stress(l), dp = f.tube_area * laws.tube->tangent(l);
+    double pt, dpt;
+    laws.tube->evaluate(l, pt, dpt);
+    double p = f.tube_area * pt, dp = f.tube_area * dpt;
     if (laws.sheath && f.sheath_area > 0) {
-      p += f.sheath_area * laws.sheath->stress(l);
-      dp += f.sheath_area * laws.sheath->tangent(l);
+      if (laws.sheath == laws.tube) {
+        p += f.sheath_area * pt;
+        dp += f.sheath_area * dpt;
+      } else {
+        double ps, dps;
+        laws.sheath->evaluate(l, ps, dps);
+        p += f.sheath_area * ps;
+        dp += f.sheath_area * dps;
+      }
     }
     n += p;
     m += f.y * p;
