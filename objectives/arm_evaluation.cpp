@@ -47,14 +47,31 @@ fem::ArmRodSpec rod_spec(const ArmCandidate& c, const EvaluationSettings& s) {
   return spec;
 }
 
-fem::RraCalibration segment_rra_fem(const ArmCandidate& c, const EvaluationSettings& s, int n) {
+// The lone RRA's FEM path, far enough to cover the axial stretch `stretch` that its
+// actuators reach in the 3CA (with a 25 % margin on the strain): the free RRA stretches far
+// more than an embedded one at the same pressure (thesis RRA: λ̄ = 1.40 at 172 kPa, while the
+// 3CA's chambers reach 1.42 at 344.7 kPa), so the path stops well below the working pressure,
+// where a thin-walled free RRA would balloon for reasons the 3CA does not share. The end
+// pressure comes from the rod's own lone-RRA model, which extends less than the FEM (so the
+// FEM covers the stretch).
+fem::RraCalibration segment_rra_fem(const ArmCandidate& c, const EvaluationSettings& s, int n, double stretch) {
   fem::RraSceneSpec spec;
   spec.design = c.design.segments[n].actuator;
   spec.tube_material = c.tube;
   spec.ring_material = c.rings;
   spec.mesh_level = s.rra_mesh_level;
-  spec.path.max_pressure_kPa = s.working_pressure_kPa;
-  for (int k = 1; k <= 10; ++k) spec.path.output_pressures_kPa.push_back(s.working_pressure_kPa * k / 10);
+  const fem::FibreLaw law(*c.tube.law);
+  const double target_mm = 1.25 * (stretch - 1) * spec.design.length_mm;
+  double lo = 0, hi = s.working_pressure_kPa;
+  const double at_max = fem::rod_rra_extension_mm(spec.design, law, hi, 1.0);
+  if (std::isfinite(at_max) && at_max > target_mm) {
+    for (int it = 0; it < 40; ++it) {  // bisection: the extension grows with the pressure
+      const double mid = 0.5 * (lo + hi), e = fem::rod_rra_extension_mm(spec.design, law, mid, 1.0);
+      (std::isfinite(e) && e < target_mm ? lo : hi) = mid;
+    }
+  }
+  spec.path.max_pressure_kPa = std::max(hi, 0.05 * s.working_pressure_kPa);
+  for (int k = 1; k <= 8; ++k) spec.path.output_pressures_kPa.push_back(spec.path.max_pressure_kPa * k / 8);
   return fem::calibrate_rra(spec);
 }
 
@@ -73,20 +90,15 @@ std::pair<double, std::string> utilisation(const fem::RraCalibration::Peaks& pea
   return {u, by};
 }
 
-SegmentMeasures measure_segment(const ArmCandidate& c, const EvaluationSettings& s, int n,
-                                const fem::RraCalibration& cal) {
+// Phase 1: the segment's bending path by the rod (records the chambers' axial stretch).
+SegmentMeasures bend_segment(const ArmCandidate& c, const EvaluationSettings& s, int n,
+                             std::vector<double>& chamber_stretch) {
   SegmentMeasures out;
-  if (!cal.pressure_kPa.empty()) {
-    out.rra_pressure_kPa = cal.pressure_kPa.back();
-    out.rra_fem_extension_mm = cal.fem_extension_mm.back();
-    out.rra_rod_extension_mm = cal.rod_extension_mm.back();
-  }
   const fem::ArmRod rod = segment_rod(c, s, n);
   fem::RodLoad load;
   load.chamber_pressure_kPa = {{0.0, s.working_pressure_kPa, s.working_pressure_kPa}};
   load.gravity_m_s2 = {-s.gravity_m_s2, 0.0};  // against the bend (towards +x)
   load.clamp_angle_rad = kHanging;
-  double previous_u = 0, previous_p = 0;
   const auto on_step = [&](double fraction, const fem::RodState& st) {
     const double p = fraction * s.working_pressure_kPa;
     const double angle = rod.tip_rotation(st, load) * kDeg;
@@ -96,7 +108,26 @@ SegmentMeasures measure_segment(const ArmCandidate& c, const EvaluationSettings&
     }
     out.pressure_kPa.push_back(p);
     out.bending_deg.push_back(angle);
-    out.chamber_stretch = rod.extremes(st, load, 0).chamber_max_stretch;
+    chamber_stretch.push_back(rod.extremes(st, load, 0).chamber_max_stretch);
+  };
+  const fem::RodState st = rod.follow(load, s.pressure_steps, on_step);
+  out.bending_deg_at_working = out.bending_deg.empty() ? 0.0 : out.bending_deg.back();
+  if (!st.converged) out.rod_diagnosis = st.diagnosis;
+  return out;
+}
+
+// Phase 2: the burst criteria and durability along the path, from the lone RRA's FEM peaks.
+void judge_segment(SegmentMeasures& out, const std::vector<double>& chamber_stretch, const ArmCandidate& c,
+                   const EvaluationSettings& s, const fem::RraCalibration& cal) {
+  if (!cal.pressure_kPa.empty()) {
+    out.rra_pressure_kPa = cal.pressure_kPa.back();
+    out.rra_fem_extension_mm = cal.fem_extension_mm.back();
+    out.rra_rod_extension_mm = cal.rod_extension_mm.back();
+  }
+  double previous_u = 0, previous_p = 0;
+  for (std::size_t i = 0; i < chamber_stretch.size(); ++i) {
+    const double p = out.pressure_kPa[i];
+    out.chamber_stretch = chamber_stretch[i];
     out.peaks = cal.peaks_at(out.chamber_stretch);
     const auto [u, by] = utilisation(out.peaks, c.tube, s.safety_factor);
     if (out.safe_pressure_kPa < 0 && u >= 1) {
@@ -105,17 +136,15 @@ SegmentMeasures measure_segment(const ArmCandidate& c, const EvaluationSettings&
     }
     out.burst_utilisation = u;
     previous_u = u, previous_p = p;
-  };
-  const fem::RodState st = rod.follow(load, s.pressure_steps, on_step);
-  out.bending_deg_at_working = out.bending_deg.empty() ? 0.0 : out.bending_deg.back();
-  if (!st.converged) {
-    out.rod_diagnosis = st.diagnosis;
+  }
+  if (!out.rod_diagnosis.empty()) {
     const double reached = out.pressure_kPa.empty() ? 0.0 : out.pressure_kPa.back();
     if (out.safe_pressure_kPa < 0 || reached < out.safe_pressure_kPa) {
       out.safe_pressure_kPa = reached;
       out.governing = "limit point (rod)";
     }
   }
+  // The lone RRA's path met a limit point (ballooning caps) before the stretch the 3CA needs.
   if (cal.limit_point && (out.safe_pressure_kPa < 0 || cal.last_pressure_kPa < out.safe_pressure_kPa)) {
     out.safe_pressure_kPa = cal.last_pressure_kPa;
     out.governing = "limit point (RRA FEM)";
@@ -123,7 +152,6 @@ SegmentMeasures measure_segment(const ArmCandidate& c, const EvaluationSettings&
   // A limit point below the working pressure: utilisation as the pressure ratio (> 1).
   if (out.safe_pressure_kPa >= 0 && out.governing.rfind("limit", 0) == 0)
     out.burst_utilisation = std::max(out.burst_utilisation, s.working_pressure_kPa / std::max(out.safe_pressure_kPa, 1.0));
-  return out;
 }
 
 }  // namespace
@@ -151,11 +179,17 @@ ArmMeasures evaluate_arm(const ArmCandidate& c, const EvaluationSettings& s) {
   out.length_mm = arm.length_mm();
 
   out.min_bending_deg = 1e300;
-  // The three segments' RRA FEM paths are independent: run them concurrently.
+  // Each segment's bending path by the rod, then the three lone-RRA FEM paths (independent:
+  // run concurrently), then the criteria along each path.
+  std::array<std::vector<double>, 3> stretch;
+  for (int n = 0; n < 3; ++n) out.segments[n] = bend_segment(c, s, n, stretch[n]);
   std::array<std::future<fem::RraCalibration>, 3> fem_paths;
-  for (int n = 0; n < 3; ++n) fem_paths[n] = std::async(std::launch::async, [&, n] { return segment_rra_fem(c, s, n); });
   for (int n = 0; n < 3; ++n) {
-    out.segments[n] = measure_segment(c, s, n, fem_paths[n].get());
+    const double needed = stretch[n].empty() ? 1.1 : *std::max_element(stretch[n].begin(), stretch[n].end());
+    fem_paths[n] = std::async(std::launch::async, [&c, &s, n, needed] { return segment_rra_fem(c, s, n, needed); });
+  }
+  for (int n = 0; n < 3; ++n) {
+    judge_segment(out.segments[n], stretch[n], c, s, fem_paths[n].get());
     const SegmentMeasures& m = out.segments[n];
     out.min_bending_deg = std::min(out.min_bending_deg, m.bending_deg_at_working);
     if (m.burst_utilisation >= out.burst_utilisation) {

@@ -141,7 +141,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
   run.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   write_design_outputs(run);
   std::cout << "total " << fixed(run.seconds, 1) << " s; written: " << config.output_directory
-            << "/report.html, summary.json, history.csv, optimum_payload_pose.vtu\n";
+            << "/report.html, summary.json, history.csv, optimum_payload_pose.vtu, optimum_mesh.vtu\n";
   return 0;
 }
 

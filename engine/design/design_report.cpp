@@ -7,6 +7,8 @@
 #include "engine/output_files.hpp"
 #include "engine/report/html_document.hpp"
 #include "engine/report/svg_plot.hpp"
+#include "fem/io/vtu_writer.hpp"
+#include "fem/mesh/tca_mesher.hpp"
 
 namespace softarm::engine {
 namespace {
@@ -109,6 +111,11 @@ void write_design_outputs(const DesignRun& run) {
   for (std::size_t i = 0; i < g.names.size(); ++i) summary["optimum_constraints"][g.names[i]] = g.values[i];
   write_json_file(dir, "summary.json", summary);
   write_pose_vtu(dir, run.optimum);
+  // The optimum's 3D geometry (Hex8, level 1) with part ids, for ParaView next to the pose.
+  fem::SolidMeshOptions mesh_options;
+  mesh_options.order = 1;
+  const fem::Mesh mesh = fem::mesh_spl(make_candidate(c, run.optimum_x).design, mesh_options);
+  fem::write_vtu((std::filesystem::path(dir) / "optimum_mesh.vtu").string(), mesh, mesh.X, {}, {});
 
   report::HtmlDocument doc("softarm design report");
   doc.heading(1, "softarm design report");
