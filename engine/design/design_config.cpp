@@ -154,7 +154,7 @@ DesignConfig read_design_config(const nlohmann::json& document) {
     auto m = root.object("model", "search fidelity (the reduced rod model + each segment's RRA FEM)");
     c.model = read_model(m, objectives::EvaluationSettings{}, "search");
     objectives::EvaluationSettings fine;
-    fine.rra_mesh_level = 2;
+    fine.rra_mesh_level = c.model.rra_mesh_level;  // the local peaks' definition (README); level + 1 is reported as a sensitivity
     fine.pressure_steps = 24;
     fine.rod_nodes_per_segment = 49;
     auto k = root.object("check", "fidelity of the final design's re-check");
@@ -163,8 +163,11 @@ DesignConfig read_design_config(const nlohmann::json& document) {
       s->working_pressure_kPa = c.requirements.max_pressure_kPa;
       s->target_bending_deg = c.requirements.bending_per_segment_deg;
     }
-    auto sf = root.object("criteria", "burst criteria (spec §4)");
+    auto sf = root.object("criteria", "burst criteria (spec §4) and the search's design margin");
     const double factor = sf.number("safety_factor", 1.5, Range::at_least(1), "divides strength and elongation at break");
+    c.search_margin = 0.01 * sf.number("search_margin_percent", 1.0, Range::closed(0, 50),
+                                       "every constraint must hold with this margin (% of its limit) on the search "
+                                       "model, so that the re-check at the check fidelity still meets it");
     sf.finish();
     c.model.safety_factor = c.check.safety_factor = factor;
   }

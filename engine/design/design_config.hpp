@@ -39,6 +39,7 @@ struct DesignConfig {
   std::string baseline_tube = "dragon_skin_30", baseline_sheath = "dragon_skin_30";
   objectives::EvaluationSettings model;     // search fidelity
   objectives::EvaluationSettings check;     // the final design's re-check (higher fidelity)
+  double search_margin = 0.01;              // constraints on the search model: g + margin ≤ 0
   optimise::Options optimiser;
   std::string output_directory = "out/design";
 };

@@ -69,6 +69,7 @@ optimise::Problem design_problem(const DesignConfig& config, double reference_st
       const objectives::ArmMeasures m = objectives::evaluate_arm(make_candidate(config, x), config.model);
       e.objective = objective_of(config, m);
       e.constraints = constraints_of(config, m, reference_strain).values;
+      for (double& g : e.constraints) g += config.search_margin;  // design margin for the re-check
       if (measured) measured(x, m);
     } catch (const fem::InputError& err) {
       e.ok = false;  // a geometry that cannot be built is an infeasible point, with the reason

@@ -30,7 +30,8 @@ struct ConstraintValues {
 ConstraintValues constraints_of(const DesignConfig& config, const objectives::ArmMeasures& m, double reference_strain);
 double objective_of(const DesignConfig& config, const objectives::ArmMeasures& m);
 
-/// The optimiser's problem. `measured` receives every successful evaluation (for the report).
+/// The optimiser's problem: constraints g + config.search_margin ≤ 0. `measured` receives
+/// every successful evaluation (for the report).
 optimise::Problem design_problem(const DesignConfig& config, double reference_strain,
                                  std::function<void(const std::vector<double>&, const objectives::ArmMeasures&)> measured);
 

@@ -24,6 +24,8 @@ struct DesignRun {
   double reference_strain = 0, check_reference_strain = 0;
   std::vector<double> thesis_x, optimum_x;
   objectives::ArmMeasures thesis, optimum, check;
+  objectives::ArmMeasures finer_peaks;  // the optimum with the RRA FEM one level finer (peak sensitivity)
+  double finer_reference_strain = 0;
   optimise::Result result;
   std::vector<HistoryPoint> history;
   double seconds = 0;
