@@ -4,6 +4,7 @@
 # real evaluations, cache hits, optimiser time, the optimum's objective and
 # whether it meets every requirement (from each run's summary.json).
 # Usage: scripts/compare_algorithms.sh [requirements.json] [budget] [output dir]
+# (SOFTARM_BIN picks the binary, default build/softarm.)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 config=${1:-configs/thesis_requirements.json}
@@ -13,7 +14,7 @@ algorithms=(nlopt:cobyla nlopt:auglag_bobyqa nlopt:isres nlopt:slsqp nlopt:ccsaq
 mkdir -p "$out"
 run() {
   local a=$1 dir="$out/${1//:/_}"
-  build/softarm design "$config" -o "$dir" --algorithm "$a" --max-evaluations "$budget" > "$dir.log" 2>&1 || true
+  "${SOFTARM_BIN:-build/softarm}" design "$config" -o "$dir" --algorithm "$a" --max-evaluations "$budget" > "$dir.log" 2>&1 || true
 }
 for ((i = 0; i < ${#algorithms[@]}; i += 2)); do
   run "${algorithms[i]}" &
