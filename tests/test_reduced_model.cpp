@@ -32,6 +32,16 @@ RraDesign uniform_rra() {
   return d;
 }
 
+// A rod of one piece, weightless (only the loads act), from `nodes` nodes.
+ArmRod weightless_rod(const RodPiece& piece, int nodes) {
+  ArmRodSpec spec;
+  spec.pieces = {piece};
+  spec.tube = spec.sheath = weightless(builtin_material("dragon_skin_30", "test"));
+  spec.rings = weightless(builtin_material("digital_abs", "test"));
+  spec.nodes_per_segment = nodes;
+  return ArmRod(spec);
+}
+
 double second_moment(const RodSection& s) {
   double i = 0;
   for (const auto& f : s.strips) i += f.y * f.y * (f.tube_area + f.sheath_area);
@@ -91,15 +101,10 @@ TEST_CASE("a section under a small moment bends as M over E I", "[reduced]") {
 
 TEST_CASE("the rod is a cantilever under a small tip load: W L^3 / 3EI with stiff caps", "[reduced]") {
   const Material ds30 = builtin_material("dragon_skin_30", "test");
-  ArmRodSpec spec;
   RodPiece piece;
   piece.kind = RodPiece::Kind::rra;
   piece.design.actuator = uniform_rra();
-  spec.pieces = {piece};
-  spec.tube = spec.sheath = weightless(ds30);
-  spec.rings = weightless(builtin_material("digital_abs", "test"));
-  spec.nodes_per_segment = 321;
-  const ArmRod rod(spec);
+  const ArmRod rod = weightless_rod(piece, 321);
   RodLoad load;
   load.chamber_pressure_kPa = {{0, 0, 0}};
   load.gravity_m_s2 = {-9.80665, 0};
@@ -120,14 +125,9 @@ TEST_CASE("one pressurised chamber bends an untapered 3CA at constant curvature 
   const Material ds30 = builtin_material("dragon_skin_30", "test");
   TcaDesign tca;
   tca.actuator.bottom_radius_mm = tca.actuator.top_radius_mm = 10.5;
-  ArmRodSpec spec;
   RodPiece piece;
   piece.design = tca;
-  spec.pieces = {piece};
-  spec.tube = spec.sheath = weightless(ds30);
-  spec.rings = weightless(builtin_material("digital_abs", "test"));
-  spec.nodes_per_segment = 161;
-  const ArmRod rod(spec);
+  const ArmRod rod = weightless_rod(piece, 161);
   RodLoad load;
   load.chamber_pressure_kPa = {{0.05, 0, 0}};  // chamber 1: bends away from it, towards −y
   const RodState st = rod.follow(load, 1);
