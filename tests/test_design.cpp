@@ -202,3 +202,17 @@ TEST_CASE("finite differences of the payload capacity converge", "[design]") {
   CHECK(d2 < 0);  // thicker walls: stiffer, smaller chambers, less payload
   CHECK(d2 == Approx(d1).epsilon(0.03));
 }
+
+TEST_CASE("a design variable may be given in physical units instead of normalised ones", "[design]") {
+  auto doc = thesis_requirements();
+  doc["design_space"].erase("wall_thickness_normalised");
+  doc["design_space"]["wall_thickness_mm"] = {{"min", 2.5}, {"max", 6}};
+  const engine::DesignConfig c = engine::read_design_config(doc);
+  std::vector<double> x = engine::baseline_values(c);
+  for (std::size_t i = 0; i < c.variables.size(); ++i)
+    if (c.variables[i].variable.name == "wall_thickness_mm") x[i] = 5.0;
+  const objectives::ArmCandidate arm = engine::make_candidate(c, x);
+  for (const auto& segment : arm.design.segments) CHECK(segment.actuator.wall_thickness_mm == Approx(5.0));
+  doc["design_space"]["wall_thickness_normalised"] = {{"min", 0.3}, {"max", 0.6}};
+  CHECK_THAT(error_field(doc), Catch::Contains("design_space.wall_thickness_mm"));
+}

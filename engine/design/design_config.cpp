@@ -25,9 +25,12 @@ const std::vector<VariableInfo>& infos() {
   using K = optimise::VariableKind;
   static const std::vector<VariableInfo> v = {
       {"wall_thickness_normalised", K::continuous, 0.466, 0.1, 0.8, "1", "t_w / r_b of every RRA"},
+      {"wall_thickness_mm", K::continuous, 0.466 * 9, 0.5, 10, "mm", "t_w, the same in every segment (physical twin of the normalised wall)"},
       {"end_cap_thickness_normalised", K::continuous, 0.25, 0.05, 1.0, "1", "t_c / r_b"},
+      {"end_cap_thickness_mm", K::continuous, 0.25 * 9, 0.3, 15, "mm", "t_c, the same in every segment"},
       {"ring_count", K::integer, 30, 0, 80, "rings", "n_r per RRA (eq 8 with d_ref = 2 mm: r̂ = n_r·2/160)"},
       {"ring_thickness_normalised", K::continuous, 0.4, 0.05, 0.95, "1", "d_r / (l / n_r); 1 = rings touch"},
+      {"ring_diameter_mm", K::continuous, 0.4 * 160.0 / 30, 0.2, 10, "mm", "d_r, the ring's section diameter"},
       {"actuator_spacing_mm", K::continuous, 3, 0.5, 10, "mm", "gap between neighbouring RRAs' outer surfaces"},
       {"taper_ratio", K::continuous, 0.5, 0.25, 1.0, "1", "t_r = (r_b)_3 / (r_t)_1 (eq 6)"},
       {"tube_material", K::categorical, 2, 0, 0, "", "RRA tube silicone"},
@@ -147,6 +150,11 @@ DesignConfig read_design_config(const nlohmann::json& document) {
       v.finish();
       c.variables.push_back(d);
     }
+    for (const auto& [a, b] : {std::pair{"wall_thickness_normalised", "wall_thickness_mm"},
+                               std::pair{"end_cap_thickness_normalised", "end_cap_thickness_mm"},
+                               std::pair{"ring_thickness_normalised", "ring_diameter_mm"}})
+      if (space.has(a) && space.has(b))
+        throw fem::InputError(space.field(b), std::string("give the variable in one unit only: '") + a + "' or '" + b + "'");
     space.finish();
     if (c.variables.empty()) throw fem::InputError("design_space", "no variable given; valid names: ring_count, ...");
   }

@@ -1,6 +1,7 @@
 #include "engine/design/design_problem.hpp"
 
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include "fem/core/input_error.hpp"
@@ -25,6 +26,12 @@ objectives::ArmCandidate make_candidate(const DesignConfig& config, const std::v
       g.erase("ring_count_normalised");
       g["ring_count"] = static_cast<int>(std::lround(x[i]));
     } else {
+      // A variable replaces its twin in the other unit (the geometry takes exactly one of them).
+      static const std::map<std::string, std::string> twin = {
+          {"wall_thickness_normalised", "wall_thickness_mm"}, {"wall_thickness_mm", "wall_thickness_normalised"},
+          {"end_cap_thickness_normalised", "end_cap_thickness_mm"}, {"end_cap_thickness_mm", "end_cap_thickness_normalised"},
+          {"ring_thickness_normalised", "ring_diameter_mm"}, {"ring_diameter_mm", "ring_thickness_normalised"}};
+      if (const auto t = twin.find(v.name); t != twin.end()) g.erase(t->second);
       g[v.name] = x[i];
     }
   }
