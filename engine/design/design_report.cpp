@@ -84,8 +84,14 @@ std::vector<std::vector<std::string>> constraint_rows(const DesignConfig& c, con
                                           format_number(m.burst_utilisation) + " (" + m.burst_governing + ")",
                                           format_number(m.durability_log_strain) + " (ref " + format_number(ref) + ")"};
   std::vector<std::vector<std::string>> rows;
-  for (std::size_t i = 0; i < g.names.size(); ++i)
-    rows.push_back({g.names[i], value[i], (g.values[i] > 1e-6 ? "!" : "") + format_number(-100 * g.values[i]) + " %"});
+  for (std::size_t i = 0; i < g.names.size(); ++i) {
+    // "!" marks a violated margin (a warning cell). Built by appends: GCC 12 warns falsely
+    // (-Wrestrict, GCC bug 105329) on a const char* + std::string chain here.
+    std::string margin = g.values[i] > 1e-6 ? "!" : "";
+    margin += format_number(-100 * g.values[i]);
+    margin += " %";
+    rows.push_back({g.names[i], value[i], margin});
+  }
   return rows;
 }
 }  // namespace
