@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "engine/design/design_command.hpp"
+#include "engine/design/design_config.hpp"
 #include "engine/optimiser/optimiser.hpp"
 #include "engine/material_command.hpp"
 #include "engine/rra_report.hpp"
@@ -86,7 +87,31 @@ int export_deck(const std::string& file, const std::string& deck_path, double pr
   return 0;
 }
 
+void print_fields(const std::string& title) {
+  std::cout << title << ":\n";
+  for (const auto& f : fem::JsonReader::documented_fields())
+    std::cout << f.path << "  (" << f.type << ", default " << f.default_value
+              << (f.range.empty() ? "" : ", valid " + f.range) << ")\n    " << f.doc << "\n";
+}
+
 void print_schema(const std::string& scene) {
+  if (scene == "design") {
+    // Reading the thesis requirements registers every requirements key with its documentation.
+    nlohmann::json probe = {{"design_space", nlohmann::json::object()}};
+    for (const auto& name : design_variable_names()) {
+      if (name.find("_mm") != std::string::npos && name != "actuator_spacing_mm") continue;  // the normalised twin is read
+      probe["design_space"][name] = name.find("material") != std::string::npos
+                                        ? nlohmann::json{{"choices", {"dragon_skin_30"}}}
+                                        : nlohmann::json{{"min", name == "ring_count" ? 20.0 : 0.3},
+                                                         {"max", name == "ring_count" ? 40.0 : 0.5}};
+    }
+    probe["design_space"]["actuator_spacing_mm"] = {{"min", 2.5}, {"max", 6}};
+    read_design_config(probe);
+    print_fields("requirements config (softarm design) keys; design_space also takes wall_thickness_mm, "
+                 "end_cap_thickness_mm, ring_diameter_mm instead of their normalised twins, and baseline_geometry "
+                 "any SPL geometry key (softarm schema --scene spl)");
+    return;
+  }
   // Reading a complete default scene registers every field with its documentation.
   const nlohmann::json rra_sizes = {{"wall_thickness_normalised", 0.466}, {"end_cap_thickness_normalised", 0.25},
                                     {"ring_count_normalised", 0.375}, {"ring_thickness_normalised", 0.4}};
@@ -95,10 +120,7 @@ void print_schema(const std::string& scene) {
   if (scene == "tca") probe["load"] = {{"chamber_pressures_kPa", {0, 344.7, 344.7}}};
   if (scene == "spl") probe["load"] = {{"chamber_pressures_kPa", {0, 345, 345, 0, 86, 345, 0, 0, 59}}};
   read_scene_config(probe);
-  std::cout << "scene \"" << scene << "\" config keys:\n";
-  for (const auto& f : fem::JsonReader::documented_fields())
-    std::cout << f.path << "  (" << f.type << ", default " << f.default_value
-              << (f.range.empty() ? "" : ", valid " + f.range) << ")\n    " << f.doc << "\n";
+  print_fields("scene \"" + scene + "\" config keys");
 }
 
 }  // namespace
@@ -130,8 +152,8 @@ int run_cli(int argc, char** argv) {
 
   auto* schema = app.add_subcommand("schema", "list every scene-config key with its unit, default and valid range");
   std::string schema_scene = "rra";
-  schema->add_option("--scene", schema_scene, "which scene's keys: rra, tca or spl (default rra)")
-      ->check(CLI::IsMember({"rra", "tca", "spl"}));
+  schema->add_option("--scene", schema_scene, "which keys: rra, tca, spl (scene configs) or design (requirements)")
+      ->check(CLI::IsMember({"rra", "tca", "spl", "design"}));
   std::string design_file;
   DesignOverrides design_overrides;
   auto* design = app.add_subcommand("design", "the main job: requirements in, optimal design out (e.g. configs/thesis_requirements.json)");
