@@ -97,3 +97,18 @@ TEST_CASE("a path that cannot be finished returns what it reached and why", "[so
   CHECK(r.reached_level < 2.0 / 3.0);  // height 0 is reached at level 2/3
   CHECK(x.allFinite());
 }
+
+TEST_CASE("a singular matrix is reported and its solve is NaN instead of a crash", "[solver]") {
+  // Rank 1: neither Cholesky nor LU can factorise it.
+  softarm::fem::SparseMatrix k(2, 2);
+  k.insert(0, 0) = 1.0;
+  k.insert(0, 1) = 1.0;
+  k.insert(1, 0) = 1.0;
+  k.insert(1, 1) = 1.0;
+  k.makeCompressed();
+  softarm::fem::LinearSolver solver;
+  CHECK(solver.factorize(k) == softarm::fem::LinearSolver::Status::singular);
+  const Eigen::VectorXd x = solver.solve(Eigen::VectorXd::Ones(2));
+  CHECK(x.size() == 2);
+  CHECK(std::isnan(x[0]));
+}

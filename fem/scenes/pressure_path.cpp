@@ -31,6 +31,8 @@ double pv_stiffness(const EnergyProblem& problem, const LoadedVolume& chamber, L
   Vector g = chamber.gradient(x);
   problem.zero_prescribed(g);
   const double compliance_mm3_per_MPa = g.dot(solver.solve(g));
+  // A singular tangent (no solve): the chamber has lost its stiffness, dp/dV = 0 (a limit point).
+  if (!std::isfinite(compliance_mm3_per_MPa)) return 0.0;
   return 1e3 / compliance_mm3_per_MPa;  // MPa → kPa
 }
 

@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 
 #include <chrono>
+#include <limits>
 
 #include "fem/core/parallel.hpp"
 
@@ -116,6 +117,9 @@ LinearSolver::Status LinearSolver::factorize(const SparseMatrix& K) {
 Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) {
   const auto t0 = std::chrono::steady_clock::now();
   Eigen::VectorXd x;
+  // A singular matrix has no factor to solve with (UMFPACK would dereference a null
+  // numeric object): the answer is "no solution", NaN, for the caller to diagnose.
+  if (status_ == Status::singular) return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
   if (status_ == Status::positive_definite)
     x = options_.upper ? Eigen::VectorXd(cholesky_upper_.solve(b)) : Eigen::VectorXd(cholesky_.solve(b));
   else

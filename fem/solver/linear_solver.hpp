@@ -40,6 +40,7 @@ class LinearSolver {
   /// Factorises K (same pattern every call). Returns positive_definite when
   /// Cholesky succeeded, indefinite when LU was needed and succeeded, singular otherwise.
   Status factorize(const SparseMatrix& K);
+  /// Solves with the last factor; NaN everywhere when the matrix was singular (no factor).
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
   Status status() const { return status_; }
 
