@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <future>
 #include <cmath>
 
 namespace softarm::objectives {
@@ -179,17 +178,14 @@ ArmMeasures evaluate_arm(const ArmCandidate& c, const EvaluationSettings& s) {
   out.length_mm = arm.length_mm();
 
   out.min_bending_deg = 1e300;
-  // Each segment's bending path by the rod, then the three lone-RRA FEM paths (independent:
-  // run concurrently), then the criteria along each path.
+  // Each segment's bending path by the rod, then its lone-RRA FEM path, then the criteria along
+  // the path. The FEM paths run one after the other: run concurrently they crashed twice in
+  // ~600 designs inside UMFPACK's solve (each path sets OpenBLAS's thread count, a global).
   std::array<std::vector<double>, 3> stretch;
-  for (int n = 0; n < 3; ++n) out.segments[n] = bend_segment(c, s, n, stretch[n]);
-  std::array<std::future<fem::RraCalibration>, 3> fem_paths;
   for (int n = 0; n < 3; ++n) {
+    out.segments[n] = bend_segment(c, s, n, stretch[n]);
     const double needed = stretch[n].empty() ? 1.1 : *std::max_element(stretch[n].begin(), stretch[n].end());
-    fem_paths[n] = std::async(std::launch::async, [&c, &s, n, needed] { return segment_rra_fem(c, s, n, needed); });
-  }
-  for (int n = 0; n < 3; ++n) {
-    judge_segment(out.segments[n], stretch[n], c, s, fem_paths[n].get());
+    judge_segment(out.segments[n], stretch[n], c, s, segment_rra_fem(c, s, n, needed));
     const SegmentMeasures& m = out.segments[n];
     out.min_bending_deg = std::min(out.min_bending_deg, m.bending_deg_at_working);
     if (m.burst_utilisation >= out.burst_utilisation) {
