@@ -6,6 +6,7 @@
 
 #include "engine/design/design_command.hpp"
 #include "engine/design/design_config.hpp"
+#include "engine/design/design_measures.hpp"
 #include "engine/optimiser/optimiser.hpp"
 #include "engine/material_command.hpp"
 #include "engine/rra_report.hpp"
@@ -110,6 +111,9 @@ void print_schema(const std::string& scene) {
     print_fields("requirements config (softarm design) keys; design_space also takes wall_thickness_mm, "
                  "end_cap_thickness_mm, ring_diameter_mm instead of their normalised twins, and baseline_geometry "
                  "any SPL geometry key (softarm schema --scene spl)");
+    std::cout << "measures for \"objective\": {\"minimise\"|\"maximise\": name} and \"constraints\": "
+                 "[{\"measure\": name, \"min\"|\"max\": value}]:\n";
+    for (const auto& m : design_measures()) std::cout << "  " << m.name << "\n    " << m.doc << "\n";
     return;
   }
   // Reading a complete default scene registers every field with its documentation.

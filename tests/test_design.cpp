@@ -216,3 +216,40 @@ TEST_CASE("a design variable may be given in physical units instead of normalise
   doc["design_space"]["wall_thickness_normalised"] = {{"min", 0.3}, {"max", 0.6}};
   CHECK_THAT(error_field(doc), Catch::Contains("design_space.wall_thickness_mm"));
 }
+
+TEST_CASE("any measure may be the objective or an extra constraint, and unknown measures are named", "[design]") {
+  auto doc = thesis_requirements();
+  doc["objective"] = {{"maximise", "payload_kg"}};
+  doc["constraints"] = nlohmann::json::array({{{"measure", "safe_working_pressure_kPa"}, {"min", 400}},
+                                              {{"measure", "pressure_for_target_bending_kPa"}, {"max", 300}}});
+  const engine::DesignConfig c = engine::read_design_config(doc);
+  CHECK(c.maximise);
+  CHECK(c.objective_measure == "payload_kg");
+  REQUIRE(c.extra_constraints.size() == 2);
+  // On the thesis design's measures: objective −payload, the extra constraints appended.
+  objectives::ArmMeasures m;
+  m.mass_kg = 1.5;
+  m.payload_kg = 0.3;
+  m.min_bending_deg = 80;
+  m.burst_utilisation = 0.9;
+  m.durability_log_strain = 1.0;
+  for (auto& s : m.segments) {
+    s.bending_deg_at_working = 80;
+    s.burst_utilisation = 0.9;
+  }
+  m.segments[2].pressure_for_target_kPa = 290;
+  m.segments[2].bending_deg_at_working = 100;
+  CHECK(engine::objective_of(c, m, 1.0) == Approx(-0.3));
+  const auto g = engine::constraints_of(c, m, 1.0);
+  REQUIRE(g.values.size() == 7);
+  // Safe pressure extrapolated as p_w / utilisation = 344.7 / 0.9 = 383 kPa < 400: violated by 17/400.
+  CHECK(g.values[5] == Approx((400 - 344.7 / 0.9) / 400).epsilon(1e-9));
+  // 90° pressure: the slowest segment extrapolated, 344.7 · 90/80 = 387.8 kPa > 300.
+  CHECK(g.values[6] == Approx((344.7 * 90 / 80 - 300) / 300).epsilon(1e-9));
+
+  doc["objective"] = {{"minimise", "weight_kg"}};
+  CHECK_THAT(error_field(doc), Catch::Contains("objective.minimise"));
+  doc["objective"] = "minimise_mass";
+  doc["constraints"] = nlohmann::json::array({{{"measure", "payload_kg"}, {"min", 0.1}, {"max", 1}}});
+  CHECK_THAT(error_field(doc), Catch::Contains("constraints[0]"));
+}

@@ -1,5 +1,7 @@
 #include "engine/design/design_config.hpp"
 
+#include "engine/design/design_measures.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -96,8 +98,38 @@ DesignConfig read_design_config(const nlohmann::json& document) {
                                 " cycles): without a strain-life curve softarm cannot show it; valid: <= " +
                                 show(q.durability_reference_cycles));
   }
-  c.objective = root.choice("objective", "minimise_mass", {"minimise_mass", "maximise_payload"},
-                            "what the optimiser minimises; the requirements are constraints");
+  // "minimise_mass" / "maximise_payload", or {"minimise": measure} / {"maximise": measure}.
+  if (root.has("objective") && root.raw("objective").is_object()) {
+    auto o = root.object("objective", "{\"minimise\": measure} or {\"maximise\": measure} (softarm schema: measures)");
+    const std::string key = o.has("maximise") ? "maximise" : "minimise";
+    c.maximise = key == "maximise";
+    c.objective_measure = o.string(key, "the measure to optimise");
+    o.finish();
+    design_measure(c.objective_measure, o.field(key));
+    c.objective = key + "_" + c.objective_measure;
+  } else {
+    c.objective = root.choice("objective", "minimise_mass", {"minimise_mass", "maximise_payload"},
+                              "what the optimiser minimises (or an object naming any measure); the requirements are "
+                              "constraints");
+    c.maximise = c.objective == "maximise_payload";
+    c.objective_measure = c.maximise ? "payload_kg" : "mass_kg";
+  }
+  if (root.has("constraints")) {
+    const auto& list = root.raw("constraints");
+    if (!list.is_array()) throw fem::InputError("constraints", "expected a list of {\"measure\": name, \"min\"|\"max\": value}");
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      fem::JsonReader k(list[i], "constraints[" + std::to_string(i) + "]");
+      MeasureBound b;
+      b.measure = k.string("measure", "a measure (design_measures.hpp)");
+      design_measure(b.measure, k.field("measure"));
+      if (k.has("min") == k.has("max"))
+        throw fem::InputError(k.field("min"), "give exactly one of 'min' or 'max'");
+      b.is_min = k.has("min");
+      b.limit = k.number(b.is_min ? "min" : "max", Range::closed(-1e12, 1e12), "the bound, in the measure's unit");
+      k.finish();
+      c.extra_constraints.push_back(b);
+    }
+  }
   {
     auto g = root.object("baseline_geometry",
                          "SPL geometry keys (softarm schema --scene spl) held fixed, and the start of the optimised ones");

@@ -31,9 +31,19 @@ struct DesignVariable {
   double baseline = 0;  // physical units; categorical: index of the baseline choice
 };
 
+/// An extra constraint on a named measure (design_measures.hpp): value ≥ min or value ≤ max.
+struct MeasureBound {
+  std::string measure;
+  bool is_min = true;
+  double limit = 0;
+};
+
 struct DesignConfig {
   Requirements requirements;
-  std::string objective = "minimise_mass";  // or "maximise_payload"
+  std::string objective = "minimise_mass";  // "minimise_<measure>" or "maximise_<measure>" (design_measures.hpp)
+  std::string objective_measure = "mass_kg";
+  bool maximise = false;
+  std::vector<MeasureBound> extra_constraints;
   std::vector<DesignVariable> variables;    // in a fixed order (design_variable_names())
   nlohmann::json baseline_geometry;         // the SPL geometry keys not optimised (and the baselines)
   std::string baseline_tube = "dragon_skin_30", baseline_sheath = "dragon_skin_30";

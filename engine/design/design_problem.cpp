@@ -4,6 +4,7 @@
 #include <map>
 #include <sstream>
 
+#include "engine/design/design_measures.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/core/json_reader.hpp"
 
@@ -58,11 +59,21 @@ ConstraintValues constraints_of(const DesignConfig& config, const objectives::Ar
               1 - m.min_bending_deg / q.bending_per_segment_deg,
               m.burst_utilisation - 1,
               m.durability_log_strain / reference_strain - 1};
+  // Extra bounds, relative to |limit| (absolute below 1 in the measure's unit).
+  for (const MeasureBound& b : config.extra_constraints) {
+    const double v = design_measure(b.measure, "constraints").value(m, config.model, reference_strain);
+    const double scale = std::max(std::abs(b.limit), 1.0);
+    std::ostringstream name;
+    name << b.measure << (b.is_min ? " >= " : " <= ") << b.limit;
+    c.names.push_back(name.str());
+    c.values.push_back(b.is_min ? (b.limit - v) / scale : (v - b.limit) / scale);
+  }
   return c;
 }
 
-double objective_of(const DesignConfig& config, const objectives::ArmMeasures& m) {
-  return config.objective == "maximise_payload" ? -m.payload_kg : m.mass_kg;
+double objective_of(const DesignConfig& config, const objectives::ArmMeasures& m, double reference_strain) {
+  const double v = design_measure(config.objective_measure, "objective").value(m, config.model, reference_strain);
+  return config.maximise ? -v : v;
 }
 
 optimise::Problem design_problem(const DesignConfig& config, double reference_strain,
@@ -74,7 +85,7 @@ optimise::Problem design_problem(const DesignConfig& config, double reference_st
     optimise::Evaluation e;
     try {
       const objectives::ArmMeasures m = objectives::evaluate_arm(make_candidate(config, x), config.model);
-      e.objective = objective_of(config, m);
+      e.objective = objective_of(config, m, reference_strain);
       e.constraints = constraints_of(config, m, reference_strain).values;
       for (double& g : e.constraints) g += config.search_margin;  // design margin for the re-check
       if (measured) measured(x, m);

@@ -8,6 +8,7 @@
 //   bending     1 − min_n θ_n(p_w) / θ_target
 //   burst       max_n utilisation_n − 1   (criteria (a), (b), (c), spec §4)
 //   durability  ε_peak / ε_ref − 1        (ε_ref: thesis RRA at its cycling pressure)
+// plus any extra bounds on named measures (design_measures.hpp), relative to |limit|.
 #include <string>
 #include <vector>
 
@@ -28,7 +29,8 @@ struct ConstraintValues {
   std::vector<double> values;  // g_i, feasible when ≤ 0
 };
 ConstraintValues constraints_of(const DesignConfig& config, const objectives::ArmMeasures& m, double reference_strain);
-double objective_of(const DesignConfig& config, const objectives::ArmMeasures& m);
+/// The value the optimiser minimises (a maximised measure negated).
+double objective_of(const DesignConfig& config, const objectives::ArmMeasures& m, double reference_strain);
 
 /// The optimiser's problem: constraints g + config.search_margin ≤ 0. `measured` receives
 /// every successful evaluation (for the report).

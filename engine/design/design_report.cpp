@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "engine/design/design_measures.hpp"
 #include "engine/design/design_problem.hpp"
 #include "engine/output_files.hpp"
 #include "engine/report/html_document.hpp"
@@ -83,14 +84,17 @@ std::vector<std::vector<std::string>> constraint_rows(const DesignConfig& c, con
                                           format_number(m.min_bending_deg) + " deg",
                                           format_number(m.burst_utilisation) + " (" + m.burst_governing + ")",
                                           format_number(m.durability_log_strain) + " (ref " + format_number(ref) + ")"};
+  std::vector<std::string> values = value;
+  for (const MeasureBound& b : c.extra_constraints)  // the extra bounds follow the five requirements
+    values.push_back(format_number(design_measure(b.measure, "constraints").value(m, c.model, ref)));
   std::vector<std::vector<std::string>> rows;
-  for (std::size_t i = 0; i < g.names.size(); ++i) {
+  for (std::size_t i = 0; i < g.names.size() && i < values.size(); ++i) {
     // "!" marks a violated margin (a warning cell). Built by appends: GCC 12 warns falsely
     // (-Wrestrict, GCC bug 105329) on a const char* + std::string chain here.
     std::string margin = g.values[i] > 1e-6 ? "!" : "";
     margin += format_number(-100 * g.values[i]);
     margin += " %";
-    rows.push_back({g.names[i], value[i], margin});
+    rows.push_back({g.names[i], values[i], margin});
   }
   return rows;
 }
@@ -188,7 +192,7 @@ void write_design_outputs(const DesignRun& run) {
   report::LinePlot conv;
   conv.title = "Objective per evaluation";
   conv.x_label = "evaluation";
-  conv.y_label = c.objective == "maximise_payload" ? "−payload (kg)" : "mass (kg)";
+  conv.y_label = (c.maximise ? "−" : "") + c.objective_measure;
   report::Series feas = series("feasible", {}, {}), infeas = series("infeasible", {}, {});
   feas.style = infeas.style = report::Series::Style::markers;
   infeas.marker = report::Series::Marker::cross;
