@@ -117,12 +117,17 @@ SegmentMeasures bend_segment(const ArmCandidate& c, const EvaluationSettings& s,
 
 // Phase 2: the burst criteria and durability along the path, from the lone RRA's FEM peaks.
 void judge_segment(SegmentMeasures& out, const std::vector<double>& chamber_stretch, const ArmCandidate& c,
-                   const EvaluationSettings& s, const fem::RraCalibration& cal) {
+                   const EvaluationSettings& s, int n, const fem::RraCalibration& cal) {
   if (!cal.pressure_kPa.empty()) {
     out.rra_pressure_kPa = cal.pressure_kPa.back();
     out.rra_fem_extension_mm = cal.fem_extension_mm.back();
     out.rra_rod_extension_mm = cal.rod_extension_mm.back();
   }
+  // The lone RRA's extension at the reporting pressure: the rod with the calibrated force factor
+  // (exact at the FEM's output pressures, constant factor beyond its last one).
+  const double p_ext = s.rra_extension_pressure_kPa;
+  out.rra_extension_mm = fem::rod_rra_extension_mm(c.design.segments[n].actuator, fem::FibreLaw(*c.tube.law),
+                                                   p_ext, cal.force_factor.at(p_ext));
   double previous_u = 0, previous_p = 0;
   for (std::size_t i = 0; i < chamber_stretch.size(); ++i) {
     const double p = out.pressure_kPa[i];
@@ -185,7 +190,7 @@ ArmMeasures evaluate_arm(const ArmCandidate& c, const EvaluationSettings& s) {
   for (int n = 0; n < 3; ++n) {
     out.segments[n] = bend_segment(c, s, n, stretch[n]);
     const double needed = stretch[n].empty() ? 1.1 : *std::max_element(stretch[n].begin(), stretch[n].end());
-    judge_segment(out.segments[n], stretch[n], c, s, segment_rra_fem(c, s, n, needed));
+    judge_segment(out.segments[n], stretch[n], c, s, n, segment_rra_fem(c, s, n, needed));
     const SegmentMeasures& m = out.segments[n];
     out.min_bending_deg = std::min(out.min_bending_deg, m.bending_deg_at_working);
     if (m.burst_utilisation >= out.burst_utilisation) {

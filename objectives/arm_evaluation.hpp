@@ -41,6 +41,7 @@ struct EvaluationSettings {
   double target_bending_deg = 90;       // per segment
   double lift_angle_deg = 90;           // payload: tip tangent from vertical
   double lift_reach_fraction = 0.25;    // payload: held out at least this share of the arm's length
+  double rra_extension_pressure_kPa = 206.8;  // the lone RRA's extension is reported at this pressure (thesis test)
   double safety_factor = 1.5;           // burst criteria (a), (b)
   int rra_mesh_level = 1;               // axisymmetric FEM of each segment's RRA
   int pressure_steps = 12;              // rod continuation steps to the working pressure
@@ -59,6 +60,7 @@ struct SegmentMeasures {
   std::string governing;                // "stress", "stretch", "limit point (rod)", "limit point (RRA FEM)" or ""
   std::string rod_diagnosis;            // empty when the path completed
   double rra_fem_extension_mm = 0, rra_rod_extension_mm = 0, rra_pressure_kPa = 0;  // model-error evidence
+  double rra_extension_mm = 0;  // the lone RRA at rra_extension_pressure_kPa: rod with the FEM-calibrated force
 };
 
 struct ArmMeasures {

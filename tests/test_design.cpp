@@ -12,7 +12,9 @@
 #include <sstream>
 
 #include "engine/design/design_config.hpp"
+#include "engine/design/design_measures.hpp"
 #include "engine/design/design_problem.hpp"
+#include "fem/scenes/rra_scene.hpp"
 #include "objectives/payload_capacity.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/core/json_reader.hpp"
@@ -252,4 +254,19 @@ TEST_CASE("any measure may be the objective or an extra constraint, and unknown 
   doc["objective"] = "minimise_mass";
   doc["constraints"] = nlohmann::json::array({{{"measure", "payload_kg"}, {"min", 0.1}, {"max", 1}}});
   CHECK_THAT(error_field(doc), Catch::Contains("constraints[0]"));
+}
+
+TEST_CASE("the RRA extension measure is the thesis RRA's FEM extension on the thesis design", "[design]") {
+  const engine::DesignConfig c = engine::read_design_config(thesis_requirements());
+  const objectives::ArmMeasures m = objectives::evaluate_arm(engine::make_candidate(c, engine::baseline_values(c)), c.model);
+  // The distal segment's RRA is the thesis RRA (Table 7); its axisymmetric FEM (level 1) extends
+  // 76.67 mm at 206.8 kPa (README). The calibrated rod interpolates the factor between the FEM's
+  // output pressures, so it matches to the interpolation's accuracy.
+  fem::RraSceneSpec rra;
+  rra.tube_material = fem::builtin_material("dragon_skin_30", "test");
+  rra.ring_material = fem::builtin_material("digital_abs", "test");
+  rra.path.max_pressure_kPa = 206.8;
+  rra.path.output_pressures_kPa = {206.8};
+  const double fem_mm = fem::run_rra_scene(rra).curve.back().extension_mm;
+  CHECK(engine::design_measure("rra_extension_mm", "test").value(m, c.model, 1.0) == Approx(fem_mm).epsilon(0.02));
 }

@@ -36,6 +36,10 @@ const std::vector<DesignMeasure>& design_measures() {
                                                       : s.working_pressure_kPa / std::max(seg.burst_utilisation, 1e-6));
          return p;
        }},
+      {"rra_extension_mm",
+       "the distal segment's lone RRA (the thesis RRA's position) extended at 206.8 kPa: the rod with the force "
+       "factor calibrated on its axisymmetric FEM path",
+       [](const M& m, const S&, double) { return m.segments[2].rra_extension_mm; }},
       {"burst_utilisation", "largest burst utilisation at the working pressure (1 = at the limit)",
        [](const M& m, const S&, double) { return m.burst_utilisation; }},
       {"durability_strain_ratio", "peak log strain at the working pressure over the thesis RRA's at its cycling pressure",
