@@ -270,3 +270,18 @@ TEST_CASE("the RRA extension measure is the thesis RRA's FEM extension on the th
   const double fem_mm = fem::run_rra_scene(rra).curve.back().extension_mm;
   CHECK(engine::design_measure("rra_extension_mm", "test").value(m, c.model, 1.0) == Approx(fem_mm).epsilon(0.02));
 }
+
+TEST_CASE("an optional strain-life curve sets the allowed strain for the required life", "[design]") {
+  auto doc = thesis_requirements();
+  doc["requirements"]["durability_cycles"] = 2.2e6;  // twice the measured 1.1 M cycles
+  CHECK_THAT(error_field(doc), Catch::Contains("requirements.durability_cycles"));
+  doc["requirements"]["strain_life_exponent"] = 4;
+  const engine::DesignConfig c = engine::read_design_config(doc);
+  // N = N_ref (ε_ref/ε)^b: twice the life at b = 4 allows ε/ε_ref = 0.5^(1/4).
+  CHECK(c.requirements.allowed_strain_ratio() == Approx(std::pow(0.5, 0.25)));
+  objectives::ArmMeasures m;
+  m.mass_kg = 1;
+  m.min_bending_deg = 90;
+  m.durability_log_strain = 0.8;
+  CHECK(engine::constraints_of(c, m, 1.0).values[4] == Approx(0.8 / std::pow(0.5, 0.25) - 1));
+}

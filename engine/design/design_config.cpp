@@ -61,6 +61,11 @@ objectives::EvaluationSettings read_model(fem::JsonReader& m, const objectives::
 }
 }  // namespace
 
+double Requirements::allowed_strain_ratio() const {
+  if (strain_life_exponent <= 0) return 1.0;  // only the measured point: no more strain than it had
+  return std::pow(durability_reference_cycles / durability_cycles, 1.0 / strain_life_exponent);
+}
+
 const std::vector<std::string>& design_variable_names() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> n;
@@ -90,12 +95,16 @@ DesignConfig read_design_config(const nlohmann::json& document) {
                  "pressure of the measured fatigue point: the thesis RRA cycled 0 <-> this (kPa)");
     q.durability_reference_cycles = r.number("durability_reference_cycles", 1.1e6, Range::positive(),
                                              "cycles the thesis RRA lasted at that pressure");
+    q.strain_life_exponent =
+        r.number("strain_life_exponent", 0, Range::non_negative(),
+                 "optional strain-life curve N = N_ref (eps_ref/eps)^b through the measured point; 0: none");
     r.finish();
-    if (q.durability_cycles > q.durability_reference_cycles)
+    if (q.strain_life_exponent == 0 && q.durability_cycles > q.durability_reference_cycles)
       throw fem::InputError("requirements.durability_cycles",
                             "value " + show(q.durability_cycles) + " exceeds the only measured fatigue point (" +
                                 show(q.durability_reference_cycles) +
-                                " cycles): without a strain-life curve softarm cannot show it; valid: <= " +
+                                " cycles): without a strain-life curve (requirements.strain_life_exponent) softarm "
+                                "cannot show it; valid: <= " +
                                 show(q.durability_reference_cycles));
   }
   // "minimise_mass" / "maximise_payload", or {"minimise": measure} / {"maximise": measure}.

@@ -22,6 +22,11 @@ struct Requirements {
   double durability_reference_pressure_kPa = 206.8;  // the thesis RRA's cycling test (1.1 M cycles)
   double durability_reference_cycles = 1.1e6;
   double durability_cycles = 1e6;           // required; met when ε ≤ ε_ref (the only measured point)
+  /// Optional strain–life curve through the measured point, N = N_ref·(ε_ref/ε)^b (Basquin form
+  /// in strain): with it, the life required sets the allowed strain ratio (N_ref/N_req)^(1/b).
+  double strain_life_exponent = 0;          // b; 0: no curve (then N_req ≤ N_ref and ε ≤ ε_ref)
+  /// Allowed ε/ε_ref for the required life.
+  double allowed_strain_ratio() const;
 };
 
 /// One design variable: the name of a geometry key (or "tube_material" /

@@ -58,7 +58,7 @@ ConstraintValues constraints_of(const DesignConfig& config, const objectives::Ar
               q.min_payload_kg > 0 ? 1 - m.payload_kg / q.min_payload_kg : -m.payload_kg,
               1 - m.min_bending_deg / q.bending_per_segment_deg,
               m.burst_utilisation - 1,
-              m.durability_log_strain / reference_strain - 1};
+              m.durability_log_strain / reference_strain / q.allowed_strain_ratio() - 1};
   // Extra bounds, relative to |limit| (absolute below 1 in the measure's unit).
   for (const MeasureBound& b : config.extra_constraints) {
     const double v = design_measure(b.measure, "constraints").value(m, config.model, reference_strain);

@@ -7,7 +7,8 @@
 //   payload     1 − payload / payload_min
 //   bending     1 − min_n θ_n(p_w) / θ_target
 //   burst       max_n utilisation_n − 1   (criteria (a), (b), (c), spec §4)
-//   durability  ε_peak / ε_ref − 1        (ε_ref: thesis RRA at its cycling pressure)
+//   durability  ε_peak / (ε_ref·r) − 1    (ε_ref: thesis RRA at its cycling pressure; r the allowed
+//                                          ratio for the required life, 1 without a strain–life curve)
 // plus any extra bounds on named measures (design_measures.hpp), relative to |limit|.
 #include <string>
 #include <vector>
