@@ -264,8 +264,7 @@ RodState ArmRod::follow(const RodLoad& load, int steps,
     return true;
   };
   const bool loaded = std::abs(load.gravity_m_s2[0]) + std::abs(load.gravity_m_s2[1]) > 0 || load.tip_mass_kg > 0;
-  if (loaded ? !march(true, 4) : !march(false, steps)) return state;
-  if (loaded && !march(false, steps)) return state;
+  if (!loaded || march(true, 4)) march(false, steps);
   return state;
 }
 

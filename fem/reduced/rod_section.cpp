@@ -65,7 +65,6 @@ Interval envelope_chord(const std::array<std::array<double, 2>, 3>& v, double rh
     const double ex = b[0] - a[0], ey = b[1] - a[1], len = std::hypot(ex, ey);
     const double nx = ey / len * rho, ny = -ex / len * rho;  // outward for counter-clockwise vertices
     out = hull(out, polygon_chord({a, b, {b[0] + nx, b[1] + ny}, {a[0] + nx, a[1] + ny}}, y));
-    out = hull(out, polygon_chord({a, {a[0] + nx, a[1] + ny}, {b[0] + nx, b[1] + ny}, b}, y));
   }
   return out;
 }
