@@ -13,7 +13,7 @@
 #include <cstring>
 #include <vector>
 
-#include "engine/scene_config.hpp"
+#include "fem/scenes/scene_config.hpp"
 #include "fem/reduced/rra_calibration.hpp"
 #include "objectives/arm_evaluation.hpp"
 #include "objectives/payload_capacity.hpp"
@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
   double fem_seconds = 0, fem_p90 = -1;
   int fem_dofs = 0;
   if (with_3d) {
-    engine::SceneConfig config = engine::load_scene_config("configs/tca_thesis.json");
+    fem::SceneConfig config = fem::load_scene_config("configs/tca_thesis.json");
     config.tca.output_pressures_kPa = p;
     const auto t = Clock::now();
     const fem::TcaResult r = fem::run_tca_scene(config.tca);

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/scene_config.hpp"
+#include "fem/scenes/scene_config.hpp"
 #include "fem/core/parallel.hpp"
 
 using namespace softarm;
@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
     else config = argv[i];
   }
   fem::set_thread_count(threads);
-  const auto scene = engine::load_scene_config(config);
+  const auto scene = fem::load_scene_config(config);
   std::printf("thesis RRA benchmark: %s, %d thread(s), median of %d runs per level\n", config.c_str(), threads, repeat);
   struct Variant {
     const char* name;

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/scene_config.hpp"
+#include "fem/scenes/scene_config.hpp"
 #include "fem/core/parallel.hpp"
 
 using namespace softarm;
@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
     else if (a == "--threads" && i + 1 < argc) fem::set_thread_count(std::atoi(argv[++i]));
     else config = a;
   }
-  const auto scene = engine::load_scene_config(config);
+  const auto scene = fem::load_scene_config(config);
   if (scene.scene != "tca") {
     std::fprintf(stderr, "bench_tca_levels: %s is not a tca scene\n", config.c_str());
     return 2;

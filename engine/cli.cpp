@@ -10,7 +10,7 @@
 #include "engine/optimiser/optimiser.hpp"
 #include "engine/material_command.hpp"
 #include "engine/rra_report.hpp"
-#include "engine/scene_config.hpp"
+#include "fem/scenes/scene_config.hpp"
 #include "engine/spl_report.hpp"
 #include "engine/tca_report.hpp"
 #include "fem/scenes/tca_export.hpp"
@@ -21,7 +21,7 @@
 namespace softarm::engine {
 namespace {
 
-int simulate_tca(const SceneConfig& config) {
+int simulate_tca(const fem::SceneConfig& config) {
   const fem::ModelChoice model = fem::choose_tca_model(config.tca);
   std::cout << "model: " << model.name << " (" << model.reason << ")\n";
   TcaCurveWriter writer(config.output.directory, std::cout);
@@ -30,7 +30,7 @@ int simulate_tca(const SceneConfig& config) {
   return result.path.outcome == fem::PathOutcome::stalled ? 1 : 0;
 }
 
-int simulate_spl(const SceneConfig& config) {
+int simulate_spl(const fem::SceneConfig& config) {
   const fem::ModelChoice model = fem::choose_spl_model(config.spl);
   std::cout << "model: " << model.name << " (" << model.reason << ")\n";
   SplCurveWriter writer(config.output.directory, std::cout);
@@ -41,7 +41,7 @@ int simulate_spl(const SceneConfig& config) {
 
 int simulate(const std::string& file, const std::string& output_override, int mesh_level_override,
              int element_order_override) {
-  SceneConfig config = load_scene_config(file);
+  fem::SceneConfig config = fem::load_scene_config(file);
   if (!output_override.empty()) config.output.directory = output_override;
   if (mesh_level_override > 0) config.mesh_level() = mesh_level_override;
   if (element_order_override > 0) config.element_order() = element_order_override;
@@ -57,7 +57,7 @@ int simulate(const std::string& file, const std::string& output_override, int me
 }
 
 int export_deck(const std::string& file, const std::string& deck_path, double pressure_kPa, int mesh_level_override) {
-  SceneConfig config = load_scene_config(file);
+  fem::SceneConfig config = fem::load_scene_config(file);
   if (mesh_level_override > 0) config.mesh_level() = mesh_level_override;
   if (config.scene == "spl")
     throw fem::InputError("scene", "export writes rra and tca scenes; an SPL deck is not implemented yet");
@@ -123,7 +123,7 @@ void print_schema(const std::string& scene) {
   if (scene == "rra") probe["load"] = {{"max_pressure_kPa", 206.8}};
   if (scene == "tca") probe["load"] = {{"chamber_pressures_kPa", {0, 344.7, 344.7}}};
   if (scene == "spl") probe["load"] = {{"chamber_pressures_kPa", {0, 345, 345, 0, 86, 345, 0, 0, 59}}};
-  read_scene_config(probe);
+  fem::read_scene_config(probe);
   print_fields("scene \"" + scene + "\" config keys");
 }
 

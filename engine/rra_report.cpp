@@ -60,7 +60,7 @@ void RraCurveWriter::add(const fem::RraCurvePoint& p) {
        << p.tube_max_principal_stress_MPa << " / " << p.ring_max_principal_stress_MPa << std::endl;
 }
 
-nlohmann::json write_rra_summary(const SceneConfig& config, const fem::RraResult& r, std::ostream& out) {
+nlohmann::json write_rra_summary(const fem::SceneConfig& config, const fem::RraResult& r, std::ostream& out) {
   const auto& dir = config.output.directory;
   nlohmann::json curve = nlohmann::json::array();
   for (const auto& p : r.curve) curve.push_back(point_json(p));

@@ -38,7 +38,7 @@ void SplCurveWriter::add(const fem::SplState& s) {
        << s.newton_iterations << std::endl;
 }
 
-nlohmann::json write_spl_summary(const SceneConfig& config, const fem::SplResult& r, std::ostream& out) {
+nlohmann::json write_spl_summary(const fem::SceneConfig& config, const fem::SplResult& r, std::ostream& out) {
   const auto& spec = config.spl;
   const auto& dir = config.output.directory;
   nlohmann::json joints = nlohmann::json::array(), peaks = nlohmann::json::object(), mass = nlohmann::json::object();

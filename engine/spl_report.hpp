@@ -6,7 +6,7 @@
 #include <ostream>
 #include <string>
 
-#include "engine/scene_config.hpp"
+#include "fem/scenes/scene_config.hpp"
 
 namespace softarm::engine {
 
@@ -20,6 +20,6 @@ class SplCurveWriter {
   std::ostream& out_;
 };
 
-nlohmann::json write_spl_summary(const SceneConfig& config, const fem::SplResult& result, std::ostream& out);
+nlohmann::json write_spl_summary(const fem::SceneConfig& config, const fem::SplResult& result, std::ostream& out);
 
 }  // namespace softarm::engine

@@ -74,7 +74,7 @@ void TcaCurveWriter::add(const fem::TcaState& s) {
        << s.newton_iterations << std::endl;
 }
 
-nlohmann::json write_tca_summary(const SceneConfig& config, const fem::TcaResult& r, std::ostream& out) {
+nlohmann::json write_tca_summary(const fem::SceneConfig& config, const fem::TcaResult& r, std::ostream& out) {
   const auto& spec = config.tca;
   const auto& dir = config.output.directory;
   nlohmann::json curve = nlohmann::json::array(), peaks = nlohmann::json::object(), mass = nlohmann::json::object();

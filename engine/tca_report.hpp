@@ -7,7 +7,7 @@
 #include <ostream>
 #include <string>
 
-#include "engine/scene_config.hpp"
+#include "fem/scenes/scene_config.hpp"
 
 namespace softarm::engine {
 
@@ -23,6 +23,6 @@ class TcaCurveWriter {
 };
 
 /// Writes summary.json (and deformed.vtu when asked); prints the outcome.
-nlohmann::json write_tca_summary(const SceneConfig& config, const fem::TcaResult& result, std::ostream& out);
+nlohmann::json write_tca_summary(const fem::SceneConfig& config, const fem::TcaResult& result, std::ostream& out);
 
 }  // namespace softarm::engine

@@ -1,11 +1,11 @@
-#include "engine/scene_config.hpp"
+#include "fem/scenes/scene_config.hpp"
 
 #include <algorithm>
 #include <optional>
 
 #include "fem/core/json_reader.hpp"
 
-namespace softarm::engine {
+namespace softarm::fem {
 using fem::InputError;
 using fem::JsonReader;
 using fem::Range;

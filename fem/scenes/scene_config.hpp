@@ -1,4 +1,6 @@
 #pragma once
+// Lives in fem/ (it depends only on fem) so that the CLI and the parameter
+// studies (studies/) read scenes the same way.
 // Scene configuration: JSON → validated, defaulted specs. Every key carries
 // its unit, unknown keys are rejected with the field named, and the same
 // declarations print as documentation (`softarm schema`).
@@ -9,7 +11,7 @@
 #include "fem/scenes/spl_scene.hpp"
 #include "fem/scenes/tca_scene.hpp"
 
-namespace softarm::engine {
+namespace softarm::fem {
 
 struct OutputSpec {
   std::string directory = "out";
@@ -17,17 +19,17 @@ struct OutputSpec {
 };
 
 struct SceneConfig {
-  std::string scene;               // "rra" or "tca"
-  fem::RraSceneSpec rra;           // scene "rra"
-  fem::TcaSceneSpec tca;           // scene "tca"
-  fem::SplSceneSpec spl;           // scene "spl"
+  std::string scene;   // "rra", "tca" or "spl"
+  RraSceneSpec rra;    // scene "rra"
+  TcaSceneSpec tca;    // scene "tca"
+  SplSceneSpec spl;    // scene "spl"
   OutputSpec output;
   bool verbose = false;
   int& mesh_level() { return scene == "tca" ? tca.mesh_level : scene == "spl" ? spl.mesh_level : rra.mesh_level; }
   int& element_order() { return scene == "tca" ? tca.element_order : scene == "spl" ? spl.element_order : rra.element_order; }
 };
 
-/// Reads a scene file (the whole document); throws fem::InputError naming the field.
+/// Reads a scene file (the whole document); throws InputError naming the field.
 SceneConfig read_scene_config(const nlohmann::json& document);
 SceneConfig load_scene_config(const std::string& file_name);
 
