@@ -317,11 +317,13 @@ BrowserRender render_in_chromium(const fs::path& html, int window_width, int tim
             r.error = std::string("cannot parse the measurement: ") + e.what();
         }
     }
-    if (r.ok) {
+    const char* keep = std::getenv("SOFTARM_KEEP_RENDER");
+    if (!r.ok)
+        r.error += stderr_summary(err) + (keep ? " (files kept in " + dir.string() + ")"
+                                               : std::string(" (SOFTARM_KEEP_RENDER=1 keeps the files)"));
+    if (!keep) {
         std::error_code ignored;
         fs::remove_all(dir, ignored);
-    } else {
-        r.error += stderr_summary(err) + " (files kept in " + dir.string() + ")";
     }
     return r;
 }

@@ -21,7 +21,9 @@
 // and writes a JSON blob into <pre id="softarm-render-check">. Chromium runs with
 // --headless --no-sandbox (needed as root) --dump-dom --virtual-time-budget under
 // `timeout`; the JSON is parsed back from the dumped DOM. Chromium's stderr (dbus noise)
-// is ignored unless it fails. One render takes about 1.5-2.5 s.
+// is ignored unless it fails. One render takes about 1-2.5 s. The temporary directory is
+// removed afterwards unless SOFTARM_KEEP_RENDER is set (then the instrumented copy, the
+// dumped DOM and Chromium's log stay there for a look).
 //
 // The executable is $SOFTARM_CHROMIUM if set (it must then be executable), else the first
 // of chromium, chromium-browser, google-chrome, google-chrome-stable found on PATH.
