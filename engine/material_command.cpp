@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -15,6 +16,7 @@
 #include "fem/core/json_reader.hpp"
 #include "fem/materials/drucker_stability.hpp"
 #include "fem/materials/material.hpp"
+#include "fem/materials/material_fit.hpp"
 
 namespace softarm::engine {
 namespace {
@@ -90,6 +92,10 @@ fem::Material resolve_material(const std::string& argument) {
   }
 }
 
+/// A stability bound as printed: "<= x" / ">= x" when it is the end of the scan, not a boundary.
+std::string stable_from(const fem::ModeStability& s) { return (s.bounded_below ? "" : "<= ") + number(s.lambda_min, 6); }
+std::string stable_to(const fem::ModeStability& s) { return (s.bounded_above ? "" : ">= ") + number(s.lambda_max, 6); }
+
 struct CheckReport {
   fem::Material material;
   double lambda_lo = 0, lambda_hi = 0;
@@ -153,9 +159,7 @@ void print_report(const CheckReport& r) {
       std::cout << std::setw(28) << "unstable at rest" << "\n";
       continue;
     }
-    const std::string lo = (s.bounded_below ? "" : "<= ") + number(s.lambda_min, 6);
-    const std::string hi = (s.bounded_above ? "" : ">= ") + number(s.lambda_max, 6);
-    std::cout << std::setw(14) << lo << std::setw(14) << hi << "\n";
+    std::cout << std::setw(14) << stable_from(s) << std::setw(14) << stable_to(s) << "\n";
   }
   std::cout << "\n(lambda: stretch along the loading direction; uniaxial (l, l^-1/2, l^-1/2), equibiaxial (l, l, l^-2), "
                "planar (l, 1, 1/l))\n";
@@ -163,6 +167,91 @@ void print_report(const CheckReport& r) {
     std::cout << "stretch at break (1 + elongation at break " << number(m.elongation_at_break * 100.0) << " %) = "
               << number(r.stretch_at_break) << "\n";
   for (const auto& w : r.warnings) std::cout << "WARNING: " << w << "\n";
+}
+
+// ---------------------------------------------------------------- fit
+
+struct FitRequest {
+  std::string csv, output, name = "fitted";
+  std::vector<std::string> models = fem::fit_model_names();
+  double density_g_cm3 = NAN;
+  double poisson_ratio = 0.48;
+  double max_abs_alpha = 10.0;
+};
+
+std::string stable_range(const fem::FitResult& f, std::size_t mode) {
+  if (!f.law) return "-";
+  const auto& s = f.stability[mode];
+  return s.stable_at_rest ? stable_from(s) + " .. " + stable_to(s) : "unstable at rest";
+}
+
+void print_fits(const fem::UniaxialData& data, const fem::FitSummary& summary) {
+  const auto [lo, hi] = std::minmax_element(data.nominal_stress_MPa.begin(), data.nominal_stress_MPa.end());
+  std::cout << "uniaxial data " << data.source << ": " << data.stretch.size() << " points, stretch "
+            << number(data.stretch.front()) << " .. " << number(data.stretch.back()) << ", nominal stress "
+            << number(*lo) << " .. " << number(*hi) << " MPa\n"
+            << "least squares on the nominal stress (incompressible closed forms); Drucker-stable stretch range "
+               "scanned over " << number(summary.scan_lambda_min) << " .. " << number(summary.scan_lambda_max) << ":\n\n";
+  std::cout << std::left << std::setw(13) << "model" << std::right << std::setw(7) << "coeffs" << std::setw(10) << "R2"
+            << std::setw(11) << "RMS MPa" << std::setw(22) << "uniaxial stable" << std::setw(22) << "equibiaxial stable"
+            << std::setw(22) << "planar stable" << "\n";
+  for (const auto& f : summary.fits) {
+    const bool fitted = !f.fitted_stress_MPa.empty();
+    std::cout << std::left << std::setw(13) << fem::fit_model_name(f.model) << std::right << std::setw(7) << f.parameters
+              << std::setw(10) << (fitted ? number(f.r_squared, 6) : "-") << std::setw(11)
+              << (fitted ? number(f.rms_error_MPa, 4) : "-");
+    for (std::size_t mode = 0; mode < 3; ++mode) std::cout << std::setw(22) << stable_range(f, mode);
+    std::cout << "\n";
+  }
+  std::cout << "\n";
+  for (const auto& f : summary.fits) {
+    std::cout << fem::fit_model_name(f.model) << ":";
+    for (const auto& [key, value] : f.coefficients) std::cout << " " << key << " = " << number(value, 6);
+    if (!f.note.empty()) std::cout << (f.coefficients.empty() ? " " : "; ") << f.note;
+    std::cout << "\n";
+  }
+  std::cout << "\nselected: "
+            << (summary.best < 0 ? std::string("none") : fem::fit_model_name(summary.fits[summary.best].model))
+            << " (highest R2 among the fits Drucker stable in uniaxial tension over the data's stretch range "
+            << number(summary.data_lambda_min) << " .. " << number(summary.data_lambda_max) << ")\n";
+}
+
+/// The selected fit as a material in the JSON form scene configs accept (material_from_json).
+void write_selected(const FitRequest& request, const fem::UniaxialData& data, const fem::FitSummary& summary) {
+  if (summary.best < 0)
+    throw fem::InputError(request.csv, "no fitted model is Drucker stable in uniaxial tension over the data's stretch "
+                                       "range; nothing written to " + request.output);
+  if (!(request.density_g_cm3 > 0.0))
+    throw fem::InputError("--density-g-cm3", "required with -o (the material file needs the density, g/cm^3, > 0)");
+  const fem::FitResult& best = summary.fits[summary.best];
+  fem::Material m;
+  m.name = request.name;
+  m.law = best.law;
+  m.density_g_cm3 = request.density_g_cm3;
+  m.source = "softarm material fit: " + fem::fit_model_name(best.model) + " least-squares fit to " + data.source +
+             " (" + std::to_string(data.stretch.size()) + " points, R2 = " + number(best.r_squared, 6) +
+             ", RMS = " + number(best.rms_error_MPa, 4) + " MPa); D1 from Poisson's ratio " +
+             number(request.poisson_ratio) + " (not measured)";
+  std::ofstream out(request.output);
+  out << fem::material_to_json(m).dump(2) << "\n";
+  if (!out) throw fem::InputError("-o", "cannot write " + request.output);
+  std::cout << "wrote " << request.output << " (material \"" << m.name << "\", "
+            << fem::fit_model_name(best.model) << ", K0 = " << number(m.law->initial_bulk_modulus()) << " MPa)\n";
+}
+
+void run_fit(const FitRequest& request) {
+  const fem::UniaxialData data = fem::read_uniaxial_csv(request.csv);
+  fem::FitOptions options;
+  options.models.clear();
+  for (const auto& name : request.models) options.models.push_back(fem::fit_model_from_name(name, "--models"));
+  options.poisson_ratio = request.poisson_ratio;
+  options.max_abs_alpha = request.max_abs_alpha;
+  const fem::FitSummary summary = fem::fit_uniaxial(data, options);
+  print_fits(data, summary);
+  if (request.output.empty())
+    std::cout << "(no file written: give -o FILE --density-g-cm3 D to write the selected fit)\n";
+  else
+    write_selected(request, data, summary);
 }
 
 }  // namespace
@@ -175,7 +264,8 @@ void add_material_command(CLI::App& app) {
   };
   auto options = std::make_shared<Options>();
 
-  CLI::App* material = app.add_subcommand("material", "Built-in materials and the Drucker stability of a law");
+  CLI::App* material =
+      app.add_subcommand("material", "Built-in materials, the Drucker stability of a law, fits to uniaxial data");
   material->require_subcommand(1);
 
   CLI::App* list = material->add_subcommand("list", "List the built-in materials (law, mu0, K0, density, strength, elongation)");
@@ -198,6 +288,27 @@ void add_material_command(CLI::App& app) {
     else
       print_report(report);
   });
+
+  auto fit_request = std::make_shared<FitRequest>();
+  CLI::App* fit = material->add_subcommand(
+      "fit", "Fit Neo-Hookean, Yeoh and Ogden N=1..3 to uniaxial data; report R2 and stability; write the best");
+  fit->add_option("csv", fit_request->csv, "CSV with header stretch,nominal_stress_MPa")->required();
+  fit->add_option("-o,--output", fit_request->output, "Write the selected fit as a material JSON file");
+  fit->add_option("--name", fit_request->name, "Material name in the written file")->capture_default_str();
+  fit->add_option("--models", fit_request->models, "Models to fit (comma separated)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(fem::fit_model_names()))
+      ->capture_default_str();
+  fit->add_option("--density-g-cm3", fit_request->density_g_cm3, "Density, g/cm^3 (required with -o)")
+      ->check(CLI::PositiveNumber);
+  fit->add_option("--poisson-ratio", fit_request->poisson_ratio,
+                  "Sets D1 = 3(1 - 2 nu)/(mu0 (1 + nu)) of the written law; 0.5 = incompressible")
+      ->check(CLI::Range(0.0, 0.5))
+      ->capture_default_str();
+  fit->add_option("--alpha-max", fit_request->max_abs_alpha, "Bound on the Ogden exponents |alpha_i|")
+      ->check(CLI::Range(1.0, 50.0))
+      ->capture_default_str();
+  fit->callback([fit_request] { run_fit(*fit_request); });
 }
 
 }  // namespace softarm::engine
