@@ -9,6 +9,7 @@
 #include "engine/design/design_measures.hpp"
 #include "engine/optimiser/optimiser.hpp"
 #include "engine/material_command.hpp"
+#include "engine/study/study_command.hpp"
 #include "engine/rra_report.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "engine/spl_report.hpp"
@@ -168,6 +169,18 @@ int run_cli(int argc, char** argv) {
   design->add_option("--max-evaluations", design_overrides.max_evaluations,
                      "evaluation budget (overrides optimiser.max_evaluations)")
       ->check(CLI::Range(1, 100000));
+  StudyOptions study_options;
+  auto* study = app.add_subcommand("study", "run parameter studies from JSON study configs and write their design-rule "
+                                            "reports (e.g. configs/studies); resumes; mpirun -np N spreads the points");
+  study->add_option("configs", study_options.configs, "study config files or directories of them")->required();
+  study->add_option("-o,--output", study_options.output_root, "output root: <root>/<study>/ and <root>/index.html")
+      ->capture_default_str();
+  study->add_option("--jobs", study_options.jobs, "points solved at once on this machine (default: all cores; 1 per "
+                                                  "rank under mpirun)")
+      ->check(CLI::Range(1, 1024));
+  study->add_flag("--fresh", study_options.fresh, "discard earlier results instead of resuming");
+  study->add_flag("--retry-failed", study_options.retry_failed, "recompute points recorded as failed");
+  study->add_flag("--report-only", study_options.report_only, "write the reports from the results on disk");
   add_material_command(app);
 
   try {
@@ -182,6 +195,7 @@ int run_cli(int argc, char** argv) {
   try {
     if (*sim) return simulate(scene_file, output_dir, mesh_level, element_order);
     if (*design) return run_design(design_file, design_overrides);
+    if (*study) return run_study_command(study_options);
     if (*exp) return export_deck(scene_file, deck_path, deck_pressure_kPa, mesh_level);
     if (*schema) {
       print_schema(schema_scene);

@@ -1,0 +1,326 @@
+#include "engine/study/study_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "engine/report/html_document.hpp"
+#include "engine/report/svg_plot.hpp"
+#include "engine/study/shape_svg.hpp"
+#include "studies/design_rule.hpp"
+
+namespace softarm::engine {
+using nlohmann::json;
+using studies::StudyPoint;
+using studies::StudySpec;
+using studies::value_text;
+
+namespace {
+
+const json* record_of(const std::map<std::string, json>& records, const StudyPoint& p) {
+  const auto it = records.find(p.key);
+  return it == records.end() ? nullptr : &it->second;
+}
+
+double number_or_nan(const json* record, const std::string& key) {
+  return record && record->contains(key) && (*record)[key].is_number() ? (*record)[key].get<double>() : std::nan("");
+}
+
+std::string cell(const json* record, const std::string& key) {
+  const double v = number_or_nan(record, key);
+  return std::isfinite(v) ? report::format_number(v, 4) : "—";
+}
+
+/// Thesis form: the output normalised by its largest value over the study
+/// (bending: by 90°, thesis §6.1), against the first parameter, one curve per
+/// combination of the others; the chosen points ringed.
+std::string parameter_plot(const StudySpec& spec, const std::vector<StudyPoint>& points,
+                           const std::map<std::string, json>& records, const std::vector<studies::CurveChoice>& curves,
+                           const std::string& output, const std::string& y_label, bool normalise) {
+  double scale = 1;
+  if (normalise && output == "bending_deg") scale = 90;
+  else if (normalise) {
+    scale = 0;
+    for (const auto& p : points) scale = std::max(scale, std::abs(number_or_nan(record_of(records, p), output)));
+    if (!(scale > 0)) scale = 1;
+  }
+  report::LinePlot plot;
+  plot.title = y_label + " vs " + spec.axes.front().label;
+  plot.x_label = spec.axes.front().label;
+  plot.y_label = y_label;
+  report::Series chosen{"chosen by the rule", {}, {}, report::Series::Style::markers, "#000", false,
+                        report::Series::Marker::square};
+  for (const auto& curve : curves) {
+    report::Series s;
+    s.label = curve.label.empty() ? "softarm" : curve.label;
+    s.style = report::Series::Style::line_and_markers;
+    for (int i : curve.points) {
+      s.x.push_back(points[i].values[0].get<double>());
+      s.y.push_back(number_or_nan(record_of(records, points[i]), output) / scale);
+    }
+    if (curve.chosen >= 0) {
+      chosen.x.push_back(points[curve.chosen].values[0].get<double>());
+      chosen.y.push_back(number_or_nan(record_of(records, points[curve.chosen]), output) / scale);
+    }
+    plot.series.push_back(std::move(s));
+  }
+  if (output == spec.rule.output && !chosen.x.empty()) plot.series.push_back(chosen);
+  if (spec.thesis.choice.is_number() && output == spec.rule.output) {
+    double lo = 1e300, hi = -1e300;
+    for (const auto& s : plot.series)
+      for (double y : s.y)
+        if (std::isfinite(y)) lo = std::min(lo, y), hi = std::max(hi, y);
+    if (hi >= lo) {
+      const double x = spec.thesis.choice.get<double>();
+      plot.series.push_back({"thesis choice", {x, x}, {lo, hi}, report::Series::Style::line, "#999", true});
+    }
+  }
+  return report::render_svg(plot);
+}
+
+/// One curve per point against normalised pressure (thesis Figs 29, 40, 44).
+std::string pressure_plot(const StudySpec& spec, const std::vector<StudyPoint>& points,
+                          const std::map<std::string, json>& records) {
+  const std::string& y = spec.plot_y;
+  double p_max = 0, y_max = 0;
+  for (const auto& p : points)
+    if (const json* r = record_of(records, p); r && r->contains("curve"))
+      for (const auto& v : (*r)["curve"]["pressure_kPa"]) p_max = std::max(p_max, v.get<double>());
+  for (const auto& p : points)
+    if (const json* r = record_of(records, p); r && r->contains("curve"))
+      for (const auto& v : (*r)["curve"][y])
+        if (v.is_number()) y_max = std::max(y_max, std::abs(v.get<double>()));
+  const double scale = y == "bending_deg" ? 90 : (y_max > 0 ? y_max : 1);
+  report::LinePlot plot;
+  plot.title = (y == "bending_deg" ? "normalised bending angle" : "normalised extension") + std::string(" vs normalised pressure");
+  plot.x_label = "normalised pressure p / " + report::format_number(p_max, 4) + " kPa";
+  plot.y_label = y == "bending_deg" ? "bending angle / 90°" : "extension / largest extension";
+  for (const auto& p : points) {
+    const json* r = record_of(records, p);
+    if (!r || !r->contains("curve")) continue;
+    report::Series s;
+    s.label = value_text(p.values[0]) + (studies::curve_label(spec, p).empty() ? "" : ", " + studies::curve_label(spec, p));
+    s.style = report::Series::Style::line_and_markers;
+    const auto& c = (*r)["curve"];
+    for (std::size_t i = 0; i < c["pressure_kPa"].size() && i < c[y].size(); ++i) {
+      s.x.push_back(c["pressure_kPa"][i].get<double>() / std::max(p_max, 1e-12));
+      s.y.push_back(c[y][i].is_number() ? c[y][i].get<double>() / scale : std::nan(""));
+    }
+    plot.series.push_back(std::move(s));
+  }
+  return report::render_svg(plot);
+}
+
+std::vector<std::string> table_outputs(const StudySpec& spec) {
+  std::vector<std::string> out{spec.rule.output};
+  const auto add = [&](const std::string& o) {
+    if (!o.empty() && std::find(out.begin(), out.end(), o) == out.end()) out.push_back(o);
+  };
+  add(spec.plot_y);
+  add(spec.rule.then_minimise);
+  for (const auto& l : spec.rule.limits) add(l.output);
+  add("mass_g");
+  add(spec.rule.output == "extension_mm" ? "limit_pressure_kPa" : "pressure_for_target_kPa");
+  add("reached_pressure_kPa");
+  return out;
+}
+
+void write_csv(const StudySpec& spec, const std::vector<StudyPoint>& points, const std::map<std::string, json>& records,
+               const std::vector<std::string>& outputs, const std::filesystem::path& file) {
+  std::ofstream csv(file);
+  for (const auto& a : spec.axes) csv << a.parameter << ",";
+  csv << "status";
+  for (const auto& o : outputs) csv << "," << o;
+  csv << ",seconds,diagnosis\n";
+  for (const auto& p : points) {
+    const json* r = record_of(records, p);
+    for (const auto& v : p.values) csv << value_text(v) << ",";
+    csv << (r ? r->value("status", std::string("?")) : "not run");
+    for (const auto& o : outputs) {
+      const double v = number_or_nan(r, o);
+      csv << ",";
+      if (std::isfinite(v)) csv << v;
+    }
+    std::string diagnosis = r ? r->value("diagnosis", std::string()) : "";
+    std::replace(diagnosis.begin(), diagnosis.end(), '"', '\'');
+    csv << "," << number_or_nan(r, "seconds") << ",\"" << diagnosis << "\"\n";
+  }
+}
+
+}  // namespace
+
+json write_study_report(const StudySpec& spec, const std::vector<StudyPoint>& points,
+                        const std::map<std::string, json>& records, const std::filesystem::path& directory) {
+  const auto curves = studies::apply_rule(spec, points, records);
+  const auto thesis = studies::compare_with_thesis(spec, points, curves);
+  const auto outputs = table_outputs(spec);
+  const auto& axis = spec.axes.front();
+
+  report::HtmlDocument doc(spec.title);
+  doc.heading(1, spec.title);
+  if (!spec.description.empty()) doc.paragraph(spec.description);
+  int ok = 0, failed = 0, missing = 0;
+  double seconds = 0;
+  for (const auto& p : points) {
+    const json* r = record_of(records, p);
+    if (!r) ++missing;
+    else if (r->value("status", "") == "ok") ++ok;
+    else ++failed;
+    seconds += std::isfinite(number_or_nan(r, "seconds")) ? number_or_nan(r, "seconds") : 0.0;
+  }
+  std::string model;
+  for (const auto& p : points)
+    if (const json* r = record_of(records, p); r && r->contains("model")) {
+      model = (*r)["model"].get<std::string>() + ", " + report::format_number(number_or_nan(r, "dofs"), 6) + " dofs";
+      break;
+    }
+  doc.paragraph("Model: " + (model.empty() ? spec.model : model) + ". Points: " + std::to_string(points.size()) + " (" +
+                std::to_string(ok) + " solved, " + std::to_string(failed) + " failed or invalid, " +
+                std::to_string(missing) + " not run); solver time " + report::format_number(seconds, 3) + " s.");
+
+  doc.heading(2, "Design rule");
+  std::string rule_text = "Rule: " + spec.rule.goal + "imise " + spec.rule.output;
+  if (spec.rule.keep_percent < 100 && !spec.rule.then_minimise.empty())
+    rule_text += ", then the smallest " + spec.rule.then_minimise + " within " +
+                 report::format_number(100 - spec.rule.keep_percent, 3) + " % of the best";
+  for (const auto& l : spec.rule.limits)
+    rule_text += "; eligible only with " + l.output + (l.max ? " ≤ " + report::format_number(*l.max, 4) : "") +
+                 (l.min ? " ≥ " + report::format_number(*l.min, 4) : "");
+  doc.paragraph(rule_text + ".");
+  for (const auto& c : curves) doc.paragraph((c.label.empty() ? "" : c.label + ": ") + c.words);
+
+  json chosen = json::array();
+  std::vector<std::vector<std::string>> choice_rows;
+  for (const auto& c : curves) {
+    const json value = c.chosen >= 0 ? points[c.chosen].values[0] : json(nullptr);
+    chosen.push_back({{"curve", c.label}, {"value", value}, {"trend", c.trend}});
+    choice_rows.push_back({c.label.empty() ? "—" : c.label, c.chosen >= 0 ? value_text(value) : "!none",
+                           spec.thesis.choice.is_null() ? "—" : value_text(spec.thesis.choice)});
+  }
+  doc.table({"curve", "softarm's choice (" + axis.label + ")", "thesis' choice"}, choice_rows, "the chosen values");
+
+  doc.heading(2, "Comparison with the thesis");
+  if (!spec.thesis.figure.empty() || !spec.thesis.finding.empty())
+    doc.paragraph("Thesis (" + spec.thesis.figure + "): " + spec.thesis.finding);
+  doc.paragraph(thesis.words);
+  if (!spec.thesis.discussion.empty()) doc.paragraph("Why: " + spec.thesis.discussion);
+
+  doc.heading(2, "Results");
+  if (spec.plot_x == "pressure") doc.raw_html(pressure_plot(spec, points, records));
+  if (axis.numeric()) {
+    const std::string y_label = spec.rule.output == "bending_deg" ? "bending angle / 90°" : spec.rule.output + " / largest";
+    doc.raw_html(parameter_plot(spec, points, records, curves, spec.rule.output, y_label, true));
+    for (const auto& o : outputs)
+      if (o != spec.rule.output && o != spec.plot_y && (o == spec.rule.then_minimise ||
+                                                        std::any_of(spec.rule.limits.begin(), spec.rule.limits.end(),
+                                                                    [&](const auto& l) { return l.output == o; })))
+        doc.raw_html(parameter_plot(spec, points, records, curves, o, o, false));
+  } else {
+    report::BarChart bars;
+    bars.title = spec.rule.output + " by " + axis.label;
+    bars.value_label = spec.rule.output;
+    for (const auto& p : points)
+      bars.bars.push_back({value_text(p.values[0]) + (studies::curve_label(spec, p).empty() ? "" : ", " + studies::curve_label(spec, p)),
+                           number_or_nan(record_of(records, p), spec.rule.output), ""});
+    doc.raw_html(report::render_svg(bars));
+  }
+
+  std::vector<std::string> header;
+  for (const auto& a : spec.axes) header.push_back(a.label);
+  header.push_back("status");
+  for (const auto& o : outputs) header.push_back(o);
+  header.push_back("time (s)");
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> classes;
+  for (const auto& p : points) {
+    const json* r = record_of(records, p);
+    std::vector<std::string> row;
+    for (const auto& v : p.values) row.push_back(value_text(v));
+    const std::string status = r ? r->value("status", std::string("?")) : "not run";
+    row.push_back(status == "ok" ? "ok" : "!" + status);
+    for (const auto& o : outputs) row.push_back(cell(r, o));
+    row.push_back(cell(r, "seconds"));
+    rows.push_back(row);
+    const bool is_chosen = std::any_of(curves.begin(), curves.end(), [&](const auto& c) { return c.chosen == p.index; });
+    classes.push_back(is_chosen ? "best" : status == "ok" ? "" : "muted");
+  }
+  doc.table(header, rows, "every point (bold: chosen by the rule)", classes);
+  std::vector<std::vector<std::string>> diagnoses;
+  for (const auto& p : points)
+    if (const json* r = record_of(records, p); r && r->contains("diagnosis"))
+      diagnoses.push_back({p.key, r->value("status", std::string()), (*r)["diagnosis"].get<std::string>()});
+  if (!diagnoses.empty()) doc.table({"point", "status", "diagnosis"}, diagnoses, "diagnoses");
+
+  doc.heading(2, "Deformed shapes of the chosen points");
+  std::string shapes;
+  for (const auto& c : curves)
+    if (c.chosen >= 0)
+      if (const json* r = record_of(records, points[c.chosen]); r && r->contains("shape"))
+        shapes += render_shape_svg((*r)["shape"], axis.label + " = " + value_text(points[c.chosen].values[0]) +
+                                                      (c.label.empty() ? "" : ", " + c.label) + " at " +
+                                                      report::format_number(number_or_nan(r, "reached_pressure_kPa"), 4) +
+                                                      " kPa");
+  doc.raw_html(shapes.empty() ? "<p>No shape recorded.</p>" : "<div>" + shapes + "</div>");
+
+  std::filesystem::create_directories(directory);
+  doc.write(directory / "report.html");
+  write_csv(spec, points, records, outputs, directory / "results.csv");
+  const json summary = {{"study", spec.name},
+                        {"title", spec.title},
+                        {"axis", axis.label},
+                        {"points", points.size()},
+                        {"solved", ok},
+                        {"failed", failed},
+                        {"not_run", missing},
+                        {"chosen", chosen},
+                        {"thesis_choice", spec.thesis.choice},
+                        {"thesis_figure", spec.thesis.figure},
+                        {"choice_agrees", thesis.choice_agrees},
+                        {"trend_agrees", thesis.trend_agrees},
+                        {"comparison", thesis.words},
+                        {"rule_words", [&] {
+                           json w = json::array();
+                           for (const auto& c : curves) w.push_back(c.words);
+                           return w;
+                         }()}};
+  std::ofstream(directory / "summary.json") << summary.dump(2) << "\n";
+  return summary;
+}
+
+void write_study_index(const std::filesystem::path& root) {
+  std::vector<json> summaries;
+  if (std::filesystem::is_directory(root))
+    for (const auto& entry : std::filesystem::directory_iterator(root))
+      if (std::filesystem::exists(entry.path() / "summary.json")) {
+        std::ifstream in(entry.path() / "summary.json");
+        const json s = json::parse(in, nullptr, false);
+        if (!s.is_discarded()) summaries.push_back(s);
+      }
+  std::sort(summaries.begin(), summaries.end(), [](const json& a, const json& b) { return a["study"] < b["study"]; });
+  report::HtmlDocument doc("softarm parameter studies");
+  doc.heading(1, "Parameter studies");
+  doc.paragraph("Each study's design rule, the value it picks and the thesis' choice (spec §5).");
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> classes;
+  std::string links;
+  for (const json& s : summaries) {
+    std::string picked;
+    for (const auto& c : s["chosen"])
+      picked += (picked.empty() ? "" : "; ") + (c["value"].is_null() ? "none" : value_text(c["value"])) +
+                (c["curve"].get<std::string>().empty() ? "" : " (" + c["curve"].get<std::string>() + ")");
+    rows.push_back({s["title"].get<std::string>(), s["axis"].get<std::string>(), picked,
+                    s["thesis_choice"].is_null() ? "—" : value_text(s["thesis_choice"]),
+                    s["choice_agrees"].get<bool>() ? "yes" : "!no", s["trend_agrees"].get<bool>() ? "yes" : "!no",
+                    std::to_string(s["solved"].get<int>()) + "/" + std::to_string(s["points"].get<int>())});
+    classes.push_back("");
+    const std::string name = s["study"].get<std::string>();
+    links += "<li><a href=\"" + report::escape_html(name) + "/report.html\">" +
+             report::escape_html(s["title"].get<std::string>()) + "</a></li>";
+  }
+  doc.table({"study", "parameter", "softarm's choice", "thesis' choice", "same choice", "same trend", "solved"}, rows,
+            "studies under " + root.string(), classes);
+  doc.raw_html("<ul>" + links + "</ul>");
+  doc.write(root / "index.html");
+}
+
+}  // namespace softarm::engine

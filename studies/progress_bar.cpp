@@ -1,0 +1,59 @@
+#include "studies/progress_bar.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+namespace softarm::studies {
+
+namespace {
+std::string duration_text(double s) {
+  std::ostringstream o;
+  if (s < 90) o << static_cast<int>(std::round(s)) << " s";
+  else if (s < 5400) o << static_cast<int>(s / 60) << " min " << static_cast<int>(std::fmod(s, 60)) << " s";
+  else o << static_cast<int>(s / 3600) << " h " << static_cast<int>(std::fmod(s, 3600) / 60) << " min";
+  return o.str();
+}
+}  // namespace
+
+ProgressBar::ProgressBar(std::ostream& out, std::string name, int total, int already_done)
+    : out_(out), name_(std::move(name)), total_(total), done_(already_done),
+      terminal_(&out == &std::cerr ? ::isatty(2) : &out == &std::cout ? ::isatty(1) : false),
+      start_(std::chrono::steady_clock::now()) {
+  if (already_done > 0) out_ << name_ << ": " << already_done << " of " << total_ << " points already in the results file\n";
+  draw("");
+}
+
+void ProgressBar::advance(bool failed, const std::string& what) {
+  ++done_;
+  ++done_here_;
+  if (failed) ++failed_;
+  draw(what);
+}
+
+void ProgressBar::draw(const std::string& what) {
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  constexpr int kWidth = 24;
+  const int filled = total_ ? kWidth * done_ / total_ : kWidth;
+  std::ostringstream line;
+  line << name_ << " [" << std::string(filled, '#') << std::string(kWidth - filled, '-') << "] " << done_ << "/"
+       << total_;
+  if (failed_) line << " (" << failed_ << " failed)";
+  line << "  " << duration_text(elapsed);
+  if (done_here_ > 0 && done_ < total_)
+    line << ", ETA " << duration_text(elapsed / done_here_ * (total_ - done_));
+  if (terminal_) {
+    out_ << "\r" << line.str() << "\033[K" << std::flush;
+  } else if (done_here_ > 0) {
+    out_ << line.str() << (what.empty() ? "" : "  " + what) << "\n" << std::flush;
+  }
+}
+
+void ProgressBar::finish() {
+  if (terminal_) out_ << "\n";
+  out_ << std::flush;
+}
+
+}  // namespace softarm::studies

@@ -1,0 +1,28 @@
+#pragma once
+// "ring_count [#########-----------]  12/30  (1 failed)  41 s, ETA 62 s":
+// redrawn in place on a terminal, one line per finished point otherwise (logs, CI).
+// The ETA is the wall time per point finished in this run (parallel runs
+// included) times the points left.
+#include <chrono>
+#include <iosfwd>
+#include <string>
+
+namespace softarm::studies {
+
+class ProgressBar {
+ public:
+  ProgressBar(std::ostream& out, std::string name, int total, int already_done);
+  /// One more point finished (`failed`: not status ok); `what`: a short note for line mode.
+  void advance(bool failed, const std::string& what);
+  void finish();
+
+ private:
+  std::ostream& out_;
+  std::string name_;
+  int total_, done_, done_here_ = 0, failed_ = 0;
+  bool terminal_;
+  std::chrono::steady_clock::time_point start_;
+  void draw(const std::string& what);
+};
+
+}  // namespace softarm::studies
