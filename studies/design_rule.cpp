@@ -73,6 +73,55 @@ void classify(const std::vector<double>& x, const std::vector<double>& y, CurveC
   else c.trend = "mixed";
 }
 
+/// `output` of a record at pressure p, from its curve (linear between samples).
+std::optional<double> curve_value_at(const json& record, const std::string& output, double p) {
+  if (!record.contains("curve") || !record["curve"].contains(output)) return std::nullopt;
+  const json& ps = record["curve"]["pressure_kPa"];
+  const json& ys = record["curve"][output];
+  for (std::size_t i = 0; i < ps.size() && i < ys.size(); ++i) {
+    if (!ys[i].is_number()) return std::nullopt;
+    const double pi = ps[i].get<double>();
+    if (pi >= p * (1 - 1e-9)) {
+      if (i == 0 || !ys[i - 1].is_number()) return ys[i].get<double>();
+      const double p0 = ps[i - 1].get<double>(), y0 = ys[i - 1].get<double>(), y1 = ys[i].get<double>();
+      return y0 + (y1 - y0) * (p - p0) / (pi - p0);
+    }
+  }
+  return std::nullopt;
+}
+
+/// Ranks a curve's points by trend_of: at the peak pressure, or for a curve output at the
+/// highest pressure every point with a curve reached.
+void rank_points(const StudySpec& spec, const std::vector<StudyPoint>& points, const std::map<std::string, json>& records,
+                 CurveChoice& curve) {
+  const std::string& output = spec.thesis.trend_of;
+  std::vector<std::pair<int, double>> ranked;
+  double p_common = 1e300;
+  bool curves = true;
+  for (int i : curve.points) {
+    const auto it = records.find(points[i].key);
+    if (it == records.end()) continue;
+    const json& r = it->second;
+    const std::string status = r.value("status", std::string());
+    if (status != "ok" && status != "incomplete") continue;
+    if (!(r.contains("curve") && r["curve"].contains(output))) curves = false;
+    if (const auto reached = output_of(r, "reached_pressure_kPa")) p_common = std::min(p_common, *reached);
+  }
+  for (int i : curve.points) {
+    const auto it = records.find(points[i].key);
+    if (it == records.end()) continue;
+    const json& r = it->second;
+    const std::string status = r.value("status", std::string());
+    if (status != "ok" && status != "incomplete") continue;
+    const auto v = curves && p_common < 1e300 ? curve_value_at(r, output, p_common)
+                                              : at_peak(r) ? output_of(r, output) : std::nullopt;
+    if (v) ranked.emplace_back(i, *v);
+  }
+  if (curves && p_common < 1e300) curve.order_pressure_kPa = p_common;
+  std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  for (const auto& [i, v] : ranked) curve.order.push_back(i);
+}
+
 std::string trend_words(const CurveChoice& c) {
   if (c.trend == "peak" || c.trend == "valley") return c.trend + " at " + number_text(*c.extremum_at);
   return c.trend;
@@ -111,21 +160,18 @@ std::vector<CurveChoice> apply_rule(const StudySpec& spec, const std::vector<Stu
       if (why.empty()) eligible.push_back(i);
       else curve.excluded.emplace_back(i, why);
       if (record && axis.numeric() && at_peak(*record))
-        if (const auto v = output_of(*record, rule.output)) {
+        if (const auto v = output_of(*record, spec.thesis.trend_of)) {
           trend_x.push_back(points[i].values[0].get<double>());
           trend_y.push_back(*v);
         }
     }
     classify(trend_x, trend_y, curve);
-    for (int i : curve.points)
-      if (records.count(points[i].key) && at_peak(records.at(points[i].key)) &&
-          output_of(records.at(points[i].key), rule.output))
-        curve.order.push_back(i);
+    rank_points(spec, points, records, curve);
     const auto value = [&](int i, const std::string& output) { return *output_of(records.at(points[i].key), output); };
     std::ostringstream words;
     const std::string& name = axis.label;
     if (!trend_x.empty() && !curve.trend.empty())
-      words << rule.output << " along " << name << ": " << trend_words(curve) << ". ";
+      words << spec.thesis.trend_of << " along " << name << ": " << trend_words(curve) << ". ";
     if (eligible.empty()) {
       words << "No point is eligible";
       if (!curve.excluded.empty()) words << " (" << curve.excluded.front().second << ")";
@@ -133,8 +179,6 @@ std::vector<CurveChoice> apply_rule(const StudySpec& spec, const std::vector<Stu
       curve.words = words.str();
       continue;
     }
-    std::sort(curve.order.begin(), curve.order.end(),
-              [&](int a, int b) { return value(a, rule.output) > value(b, rule.output); });
     curve.best = *std::max_element(eligible.begin(), eligible.end(),
                                    [&](int a, int b) { return sign * value(a, rule.output) < sign * value(b, rule.output); });
     const double best = value(curve.best, rule.output);
@@ -222,7 +266,10 @@ ThesisComparison compare_with_thesis(const StudySpec& spec, const std::vector<St
       for (const auto& x : v) s += (s.empty() ? "" : " > ") + value_text(x);
       return s;
     };
-    words << "Thesis order of " << spec.rule.output << ": " << order_text(t.order) << "; softarm: ";
+    words << "Thesis order of " << t.trend_of << ": " << order_text(t.order) << "; softarm";
+    if (!curves.empty() && curves.front().order_pressure_kPa)
+      words << " (at " << number_text(*curves.front().order_pressure_kPa) << " kPa, the highest pressure every point reached)";
+    words << ": ";
     for (std::size_t i = 0; i < curves.size(); ++i) {
       std::vector<json> v;
       for (int k : curves[i].order) v.push_back(points[k].values[0]);

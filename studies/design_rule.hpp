@@ -6,9 +6,12 @@
 // are those with status ok that keep every limit; the best is the largest (or
 // smallest) `output`; the chosen is the best or, with keep_percent < 100, the
 // point among those within keep_percent of the best that minimises
-// `then_minimise`. The trend of `output` along a numeric first axis is
-// classified (increasing, decreasing, peak at x, valley at x, flat within
-// 0.5 %) and compared with the thesis' trend.
+// `then_minimise`. The trend of the thesis' trend_of output along a numeric
+// first axis is classified (increasing, decreasing, peak at x, valley at x,
+// flat within 0.5 %) and compared with the thesis' trend; along a categorical
+// axis the points are ranked by it, at the highest pressure every point reached
+// when it is a curve output ("at the same pressure", as the thesis compares a
+// ballooning Dragon Skin 10 with the others), and compared with the thesis' order.
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -27,7 +30,8 @@ struct CurveChoice {
   std::vector<std::pair<int, std::string>> excluded;  // point index, why
   std::string trend;               // "increasing", "decreasing", "peak", "valley", "flat", "mixed" or ""
   std::optional<double> extremum_at;  // first-axis value of the peak / valley
-  std::vector<int> order;          // ok points from the largest output to the smallest
+  std::vector<int> order;          // points from the largest trend_of output to the smallest, compared at
+  std::optional<double> order_pressure_kPa;  // the highest pressure all of them reached (curve outputs)
   std::string words;               // the rule, stated from the data
 };
 

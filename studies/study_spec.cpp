@@ -1,6 +1,7 @@
 #include "studies/study_spec.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <functional>
 
 #include "fem/core/input_error.hpp"
@@ -121,13 +122,15 @@ DesignRuleSpec read_rule(JsonReader rule, const std::vector<std::string>& output
   return r;
 }
 
-ThesisFinding read_thesis(JsonReader thesis) {
+ThesisFinding read_thesis(JsonReader thesis, const std::string& rule_output, const std::vector<std::string>& outputs) {
   ThesisFinding t;
+  t.trend_of = thesis.string("trend_of", rule_output, "the output whose trend or order the thesis states");
+  require_output(thesis, "trend_of", t.trend_of, outputs);
   t.choice = thesis.has("choice") ? thesis.raw("choice") : json();
   t.figure = thesis.string("figure", "", "where the thesis shows it (figure, table)");
   t.finding = thesis.string("finding", "", "what the thesis found, in its words");
   t.trend = thesis.choice("trend", "", {"", "increasing", "decreasing", "peak"},
-                          "the trend of the rule's output along the first axis in the thesis");
+                          "the trend of trend_of along the first axis in the thesis");
   t.peak_at = thesis.optional_number("peak_at", Range{}, "where the thesis' curve peaks (trend 'peak')");
   if (thesis.has("order")) {
     const json& order = thesis.raw("order");
@@ -150,7 +153,7 @@ std::string fingerprint_of(const json& what) {
 
 }  // namespace
 
-StudySpec read_study(const json& document) {
+StudySpec read_study(const json& document, const std::filesystem::path& base_directory) {
   JsonReader root(document, "");
   StudySpec s;
   s.name = root.string("study", "short name: the output folder and the index entry");
@@ -159,11 +162,26 @@ StudySpec read_study(const json& document) {
   s.title = root.string("title", s.name, "heading of the study's report");
   s.description = root.string("description", "", "free text shown in the report");
 
-  if (!root.has("scene") || !root.raw("scene").is_object())
-    throw InputError(root.field("scene"), "required object (a scene document as for softarm simulate) is missing");
-  s.scene = root.raw("scene");
-  if (s.scene.contains("output"))
-    throw InputError("scene.output", "a study writes its own output; remove 'output' from the scene");
+  if (!root.has("scene") || !(root.raw("scene").is_object() || root.raw("scene").is_string()))
+    throw InputError(root.field("scene"), "required: a scene document as for softarm simulate, or the name of a "
+                                          "scene file (relative to the study config)");
+  if (root.raw("scene").is_string()) {
+    const std::filesystem::path file = base_directory / root.raw("scene").get<std::string>();
+    if (!std::filesystem::exists(file))
+      throw InputError(root.field("scene"), "scene file '" + file.string() + "' does not exist");
+    s.scene = fem::load_json_file(file.string());
+    s.scene.erase("output");  // a study writes its own output
+    s.scene.erase("description");
+  } else {
+    s.scene = root.raw("scene");
+    if (s.scene.contains("output"))
+      throw InputError("scene.output", "a study writes its own output; remove 'output' from the scene");
+  }
+  if (root.has("scene_changes")) {
+    const json& changes = root.raw("scene_changes");
+    if (!changes.is_object()) throw InputError(root.field("scene_changes"), "needs an object (a JSON merge patch)");
+    s.scene.merge_patch(changes);
+  }
   s.scene["output"] = {{"vtu", false}};
   const fem::SceneConfig base = [&] {
     try {
@@ -194,7 +212,7 @@ StudySpec read_study(const json& document) {
   plot.finish();
 
   s.rule = read_rule(root.object("rule", "the design rule"), outputs);
-  s.thesis = read_thesis(root.object("thesis", "what the thesis found (spec §5)"));
+  s.thesis = read_thesis(root.object("thesis", "what the thesis found (spec §5)"), s.rule.output, outputs);
   s.point_timeout_s = root.number("point_timeout_s", 900, Range::closed(1, 86400),
                                   "a point running longer is stopped and recorded as failed (s)");
   root.finish();
@@ -215,6 +233,8 @@ StudySpec read_study(const json& document) {
   return s;
 }
 
-StudySpec load_study(const std::string& file_name) { return read_study(fem::load_json_file(file_name)); }
+StudySpec load_study(const std::string& file_name) {
+  return read_study(fem::load_json_file(file_name), std::filesystem::path(file_name).parent_path());
+}
 
 }  // namespace softarm::studies

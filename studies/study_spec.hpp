@@ -7,7 +7,9 @@
 //
 //   {
 //     "study": "ring_count", "title": "…", "description": "…",
-//     "scene": { a scene document as for `softarm simulate`, without "output" },
+//     "scene": { a scene document as for `softarm simulate`, without "output" }
+//              or "../rra_thesis.json" (a scene file, relative to the study config),
+//     "scene_changes": { a JSON merge patch applied to the scene, e.g. {"mesh": {"level": 1}} },
 //     "model": "fem" | "rod",
 //     "sweep": [ {"parameter": "geometry.ring_count_normalised", "values": [0.125, …]},
 //                {"parameter": "materials.tube", "values": ["dragon_skin_10", …]} ],
@@ -19,6 +21,7 @@
 //
 // The first sweep axis is the plot's parameter; every combination of the
 // others is one curve (e.g. one per material), and the rule is applied per curve.
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -56,6 +59,7 @@ struct DesignRuleSpec {
 struct ThesisFinding {
   nlohmann::json choice;             // the value the thesis picked (null if none)
   std::string figure, finding;
+  std::string trend_of;              // the output the thesis' trend and order speak of (default: the rule's)
   std::string trend;                 // "increasing" | "decreasing" | "peak" | "" (not stated)
   std::optional<double> peak_at;     // for trend "peak"
   std::vector<nlohmann::json> order; // first-axis values from the largest output to the smallest (categorical axes)
@@ -79,7 +83,8 @@ struct StudySpec {
 };
 
 /// Reads and validates a study config; throws fem::InputError naming the field.
-StudySpec read_study(const nlohmann::json& document);
+/// `base_directory`: where a scene file named by "scene" is looked up.
+StudySpec read_study(const nlohmann::json& document, const std::filesystem::path& base_directory = {});
 StudySpec load_study(const std::string& file_name);
 
 /// Outputs a point of this scene/model reports (for validating rule and plot keys).
