@@ -23,21 +23,19 @@ std::optional<double> output_of(const json& record, const std::string& output) {
 
 std::string percent_text(double fraction) { return number_text(100 * fraction, 4) + " %"; }
 
-/// Solved up to the study's peak pressure: its outputs compare with the others'.
-bool at_peak(const json& record) {
-  if (record.value("status", std::string()) != "ok") return false;
-  const auto reached = output_of(record, "reached_pressure_kPa"), peak = output_of(record, "max_pressure_kPa");
-  return !(reached && peak && *reached < (1 - 1e-6) * *peak);
-}
-
 /// Why a point is not eligible ("" if it is).
 std::string exclusion(const DesignRuleSpec& rule, const json* record) {
   if (!record) return "not run yet";
   const std::string status = record->value("status", std::string("?"));
-  if (status != "ok") return status + ": " + record->value("diagnosis", std::string());
+  if (status != "ok") {
+    std::string diagnosis = record->value("diagnosis", std::string());
+    const auto cut = diagnosis.find(" (");
+    if (cut != std::string::npos) diagnosis.resize(cut);  // the full text is in the report's diagnoses table
+    return status + ": " + diagnosis;
+  }
   if (!output_of(*record, rule.output)) return rule.output + " not available";
   // Outputs are compared at the study's peak pressure: a path that stopped short is not comparable.
-  if (!at_peak(*record))
+  if (!solved_to_peak(*record))
     return "stopped at " + number_text(*output_of(*record, "reached_pressure_kPa")) + " of " +
            number_text(*output_of(*record, "max_pressure_kPa")) + " kPa" +
            (output_of(*record, "limit_pressure_kPa") ? " (limit point: ballooning)" : "");
@@ -114,7 +112,7 @@ void rank_points(const StudySpec& spec, const std::vector<StudyPoint>& points, c
     const std::string status = r.value("status", std::string());
     if (status != "ok" && status != "incomplete") continue;
     const auto v = curves && p_common < 1e300 ? curve_value_at(r, output, p_common)
-                                              : at_peak(r) ? output_of(r, output) : std::nullopt;
+                                              : solved_to_peak(r) ? output_of(r, output) : std::nullopt;
     if (v) ranked.emplace_back(i, *v);
   }
   if (curves && p_common < 1e300) curve.order_pressure_kPa = p_common;
@@ -128,6 +126,12 @@ std::string trend_words(const CurveChoice& c) {
 }
 
 }  // namespace
+
+bool solved_to_peak(const json& record) {
+  if (record.value("status", std::string()) != "ok") return false;
+  const auto reached = output_of(record, "reached_pressure_kPa"), peak = output_of(record, "max_pressure_kPa");
+  return !(reached && peak && *reached < (1 - 1e-6) * *peak);
+}
 
 std::string output_value_text(const std::string& output, double value) {
   static const std::vector<std::pair<std::string, std::string>> units{
@@ -159,7 +163,7 @@ std::vector<CurveChoice> apply_rule(const StudySpec& spec, const std::vector<Stu
       const std::string why = exclusion(rule, record);
       if (why.empty()) eligible.push_back(i);
       else curve.excluded.emplace_back(i, why);
-      if (record && axis.numeric() && at_peak(*record))
+      if (record && axis.numeric() && solved_to_peak(*record))
         if (const auto v = output_of(*record, spec.thesis.trend_of)) {
           trend_x.push_back(points[i].values[0].get<double>());
           trend_y.push_back(*v);

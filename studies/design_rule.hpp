@@ -46,6 +46,9 @@ struct ThesisComparison {
 ThesisComparison compare_with_thesis(const StudySpec& spec, const std::vector<StudyPoint>& points,
                                      const std::vector<CurveChoice>& curves);
 
+/// Status ok and solved up to the study's peak pressure: its outputs compare with the others'.
+bool solved_to_peak(const nlohmann::json& record);
+
 /// "76.67 mm", "43.5 g", "0.965" from an output name's unit suffix.
 std::string output_value_text(const std::string& output, double value);
 

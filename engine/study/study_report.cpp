@@ -26,26 +26,34 @@ double number_or_nan(const json* record, const std::string& key) {
   return record && record->contains(key) && (*record)[key].is_number() ? (*record)[key].get<double>() : std::nan("");
 }
 
+/// A value to compare along a parameter: only points solved up to the peak pressure.
+double at_peak_or_nan(const json* record, const std::string& key) {
+  return record && studies::solved_to_peak(*record) ? number_or_nan(record, key) : std::nan("");
+}
+
 std::string cell(const json* record, const std::string& key) {
   const double v = number_or_nan(record, key);
   return std::isfinite(v) ? report::format_number(v, 4) : "—";
 }
 
-/// Thesis form: the output normalised by its largest value over the study
-/// (bending: by 90°, thesis §6.1), against the first parameter, one curve per
-/// combination of the others; the chosen points ringed.
+/// Thesis form: extension normalised by its largest value over the study,
+/// bending by 90° (thesis §6.1); other outputs as they are; against the first
+/// parameter, one curve per combination of the others, points that stopped
+/// before the peak pressure left out; the chosen points marked.
 std::string parameter_plot(const StudySpec& spec, const std::vector<StudyPoint>& points,
                            const std::map<std::string, json>& records, const std::vector<studies::CurveChoice>& curves,
-                           const std::string& output, const std::string& y_label, bool normalise) {
+                           const std::string& output) {
   double scale = 1;
-  if (normalise && output == "bending_deg") scale = 90;
-  else if (normalise) {
+  std::string y_label = output;
+  if (output == "bending_deg") scale = 90, y_label = "bending angle / 90°";
+  if (output == "extension_mm") {
     scale = 0;
-    for (const auto& p : points) scale = std::max(scale, std::abs(number_or_nan(record_of(records, p), output)));
+    for (const auto& p : points) scale = std::max(scale, std::abs(at_peak_or_nan(record_of(records, p), output)));
     if (!(scale > 0)) scale = 1;
+    y_label = "extension / largest (" + report::format_number(scale, 4) + " mm)";
   }
   report::LinePlot plot;
-  plot.title = y_label + " vs " + spec.axes.front().label;
+  plot.title = output + " vs " + spec.axes.front().label + " (points solved to the peak pressure)";
   plot.x_label = spec.axes.front().label;
   plot.y_label = y_label;
   report::Series chosen{"chosen by the rule", {}, {}, report::Series::Style::markers, "#000", false,
@@ -56,16 +64,16 @@ std::string parameter_plot(const StudySpec& spec, const std::vector<StudyPoint>&
     s.style = report::Series::Style::line_and_markers;
     for (int i : curve.points) {
       s.x.push_back(points[i].values[0].get<double>());
-      s.y.push_back(number_or_nan(record_of(records, points[i]), output) / scale);
+      s.y.push_back(at_peak_or_nan(record_of(records, points[i]), output) / scale);
     }
     if (curve.chosen >= 0) {
       chosen.x.push_back(points[curve.chosen].values[0].get<double>());
-      chosen.y.push_back(number_or_nan(record_of(records, points[curve.chosen]), output) / scale);
+      chosen.y.push_back(at_peak_or_nan(record_of(records, points[curve.chosen]), output) / scale);
     }
     plot.series.push_back(std::move(s));
   }
-  if (output == spec.rule.output && !chosen.x.empty()) plot.series.push_back(chosen);
-  if (spec.thesis.choice.is_number() && output == spec.rule.output) {
+  if (!chosen.x.empty()) plot.series.push_back(chosen);
+  if (spec.thesis.choice.is_number()) {
     double lo = 1e300, hi = -1e300;
     for (const auto& s : plot.series)
       for (double y : s.y)
@@ -99,7 +107,8 @@ std::string pressure_plot(const StudySpec& spec, const std::vector<StudyPoint>& 
     const json* r = record_of(records, p);
     if (!r || !r->contains("curve")) continue;
     report::Series s;
-    s.label = value_text(p.values[0]) + (studies::curve_label(spec, p).empty() ? "" : ", " + studies::curve_label(spec, p));
+    s.label = spec.axes.front().label + " = " + value_text(p.values[0]) +
+              (studies::curve_label(spec, p).empty() ? "" : ", " + studies::curve_label(spec, p));
     s.style = report::Series::Style::line_and_markers;
     const auto& c = (*r)["curve"];
     for (std::size_t i = 0; i < c["pressure_kPa"].size() && i < c[y].size(); ++i) {
@@ -208,13 +217,15 @@ json write_study_report(const StudySpec& spec, const std::vector<StudyPoint>& po
   doc.heading(2, "Results");
   if (spec.plot_x == "pressure") doc.raw_html(pressure_plot(spec, points, records));
   if (axis.numeric()) {
-    const std::string y_label = spec.rule.output == "bending_deg" ? "bending angle / 90°" : spec.rule.output + " / largest";
-    doc.raw_html(parameter_plot(spec, points, records, curves, spec.rule.output, y_label, true));
-    for (const auto& o : outputs)
-      if (o != spec.rule.output && o != spec.plot_y && (o == spec.rule.then_minimise ||
-                                                        std::any_of(spec.rule.limits.begin(), spec.rule.limits.end(),
-                                                                    [&](const auto& l) { return l.output == o; })))
-        doc.raw_html(parameter_plot(spec, points, records, curves, o, o, false));
+    // The rule's output, the thesis' trend output, and what the rule weighs or limits.
+    std::vector<std::string> plotted{spec.rule.output};
+    const auto add = [&](const std::string& o) {
+      if (!o.empty() && std::find(plotted.begin(), plotted.end(), o) == plotted.end()) plotted.push_back(o);
+    };
+    add(spec.thesis.trend_of);
+    add(spec.rule.then_minimise);
+    for (const auto& l : spec.rule.limits) add(l.output);
+    for (const auto& o : plotted) doc.raw_html(parameter_plot(spec, points, records, curves, o));
   } else {
     report::BarChart bars;
     bars.title = spec.rule.output + " by " + axis.label;
