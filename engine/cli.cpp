@@ -10,6 +10,7 @@
 #include "engine/optimiser/optimiser.hpp"
 #include "engine/material_command.hpp"
 #include "engine/study/study_command.hpp"
+#include "studies/study_spec.hpp"
 #include "engine/rra_report.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "engine/spl_report.hpp"
@@ -117,6 +118,26 @@ void print_schema(const std::string& scene) {
     for (const auto& m : design_measures()) std::cout << "  " << m.name << "\n    " << m.doc << "\n";
     return;
   }
+  if (scene == "study") {
+    // Reading a minimal study registers every study key (and the scene keys of its base scene).
+    const nlohmann::json probe = {
+        {"study", "probe"},
+        {"scene", {{"scene", "rra"}, {"geometry", {{"wall_thickness_normalised", 0.466}, {"end_cap_thickness_normalised", 0.25},
+                                                   {"ring_count_normalised", 0.375}, {"ring_thickness_normalised", 0.4}}},
+                   {"load", {{"max_pressure_kPa", 206.8}}}}},
+        {"sweep", {{{"parameter", "geometry.wall_thickness_normalised"}, {"values", {0.4}}}}},
+        {"rule", {{"output", "extension_mm"}}}};
+    studies::read_study(probe);
+    print_fields("study config (softarm study) keys, with those of its base scene (here an rra scene); also "
+                 "\"scene\": a scene file name, and \"scene_changes\": a JSON merge patch applied to the scene");
+    std::cout << "outputs (rule, plot, limits, thesis.trend_of): rra: ";
+    for (const auto& o : studies::scalar_outputs("rra", "fem")) std::cout << o << " ";
+    std::cout << "\n  tca (model rod): ";
+    for (const auto& o : studies::scalar_outputs("tca", "rod")) std::cout << o << " ";
+    std::cout << "\n  sweep parameters: any scene path <section>.<key> (softarm schema --scene rra|tca), or taper_ratio "
+                 "(the distal segment's radii by thesis eqs 5-7)\n";
+    return;
+  }
   // Reading a complete default scene registers every field with its documentation.
   const nlohmann::json rra_sizes = {{"wall_thickness_normalised", 0.466}, {"end_cap_thickness_normalised", 0.25},
                                     {"ring_count_normalised", 0.375}, {"ring_thickness_normalised", 0.4}};
@@ -157,8 +178,8 @@ int run_cli(int argc, char** argv) {
 
   auto* schema = app.add_subcommand("schema", "list every scene-config key with its unit, default and valid range");
   std::string schema_scene = "rra";
-  schema->add_option("--scene", schema_scene, "which keys: rra, tca, spl (scene configs) or design (requirements)")
-      ->check(CLI::IsMember({"rra", "tca", "spl", "design"}));
+  schema->add_option("--scene", schema_scene, "which keys: rra, tca, spl (scene configs), design (requirements) or study")
+      ->check(CLI::IsMember({"rra", "tca", "spl", "design", "study"}));
   std::string design_file;
   DesignOverrides design_overrides;
   auto* design = app.add_subcommand("design", "the main job: requirements in, optimal design out (e.g. configs/thesis_requirements.json)");

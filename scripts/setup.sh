@@ -9,11 +9,14 @@ cd "$(dirname "$0")/.."
 # factorisation), and the threaded build is 1.7-2.2x faster than the serial one on 2 cores
 # (bench_linear_solver; numbers in fem/solver/linear_solver.cpp). Installing it makes it the
 # libblas.so.3/liblapack.so.3 alternative (priority 100) unless an admin has pinned another.
+# libopenmpi-dev, openmpi-bin: `mpirun -np N softarm study …` spreads a study's points over
+# machines (studies/cluster.hpp); the [study] tests check 2 ranks give the serial results.
 # chromium: the [browser] tests render the HTML reports headless (tests/support/browser_render.hpp);
 # about 120 MB download, 410 MB installed. Its fonts come with it (libfontconfig1 -> fontconfig-config
 # -> fonts-dejavu-core), enough for the reports' text to lay out, so no font package is listed.
 packages=(build-essential cmake libeigen3-dev libsuitesparse-dev libopenblas0-pthread libnlopt-cxx-dev
-          coinor-libipopt-dev nlohmann-json3-dev catch2 libcli11-dev calculix-ccx chromium)
+          coinor-libipopt-dev nlohmann-json3-dev catch2 libcli11-dev calculix-ccx chromium
+          libopenmpi-dev openmpi-bin)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
