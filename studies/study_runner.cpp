@@ -87,6 +87,7 @@ RunSummary run_study(const StudySpec& spec, const std::filesystem::path& directo
 
   std::size_t next = 0;
   int ranks_running = cluster.size() - 1;
+  // A rank with no share (nothing left on a resume, more ranks than points) skips the loop, but still says done.
   while (next < mine.size() || !pool.idle() || (cluster.root() && ranks_running > 0)) {
     while (next < mine.size() && pool.has_free_slot()) {
       const StudyPoint& p = points[mine[next++]];
@@ -105,12 +106,9 @@ RunSummary run_study(const StudySpec& spec, const std::filesystem::path& directo
         if (message->done) --ranks_running;
         else take(json::parse(message->line));
       }
-    if (!cluster.root() && next == mine.size() && pool.idle()) {
-      cluster.send_done();
-      break;
-    }
     if (!progressed) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
+  if (!cluster.root()) cluster.send_done();
   if (bar) bar->finish();
   std::filesystem::remove_all(directory / (".running-rank" + std::to_string(cluster.rank())));
   cluster.barrier();
