@@ -86,6 +86,39 @@ TEST_CASE("a thin neo-Hookean tube balloons: the limit point is detected and rep
   CHECK(r.path.reached_pressure_kPa < 40.0);
 }
 
+TEST_CASE("chamber-volume control follows the ballooning tube past its pressure maximum", "[rra][limit]") {
+  // The tube above: volume control takes over where pressure control stops and traces
+  // the p–V curve over its maximum. Independent check: pressure control with a 100×
+  // finer smallest increment (and no volume control) creeps up to the maximum from
+  // below: the two estimates of the maximum must agree to 0.02 % (the parabola's
+  // vertex through three traced states, against the last pressure that still converged).
+  const auto nh = test::material(std::make_shared<NeoHookean>(0.1153 / 2, VolumetricPolynomial({0.7029})), 1.08);
+  const auto r = run_rra_scene(plain_tube(nh, 60.0));
+  INFO(r.path.diagnosis);
+  REQUIRE(r.path.outcome == PathOutcome::limit_point);
+  CHECK(r.path.diagnosis.find("volume control") != std::string::npos);
+  REQUIRE(r.path.beyond_limit.size() >= 3);
+  // Past the last pressure-controlled state the volume grows throughout while the pressure
+  // first rises to the maximum and then falls (the branch pressure control cannot follow).
+  double p_max = r.path.history.back().pressure_kPa;
+  for (std::size_t i = 0; i < r.path.beyond_limit.size(); ++i) {
+    const double v_before = i ? r.path.beyond_limit[i - 1].chamber_volume_mm3 : r.path.history.back().chamber_volume_mm3;
+    CHECK(r.path.beyond_limit[i].chamber_volume_mm3 > v_before);
+    p_max = std::max(p_max, r.path.beyond_limit[i].pressure_kPa);
+  }
+  CHECK(r.path.beyond_limit.back().pressure_kPa < (1 - 1e-3) * p_max);
+  CHECK(r.path.estimated_limit_pressure_kPa >= p_max * (1 - 1e-9));
+  CHECK(r.path.estimated_limit_pressure_kPa < p_max * 1.002);  // the parabola's vertex sits by the largest state
+
+  auto creep = plain_tube(nh, 60.0);
+  creep.path.limit.follow_with_volume_control = false;
+  creep.path.steps.min_increment *= 0.01;
+  const auto c = run_rra_scene(creep);
+  INFO("pressure control creeps to " << c.path.reached_pressure_kPa << " kPa; volume control's maximum "
+                                     << r.path.estimated_limit_pressure_kPa << " kPa");
+  CHECK(c.path.reached_pressure_kPa == Approx(r.path.estimated_limit_pressure_kPa).epsilon(2e-4));
+}
+
 TEST_CASE("the Ogden tube that CalculiX stalls on near 56 kPa is carried on", "[rra][limit]") {
   const auto r = run_rra_scene(plain_tube(builtin_material("dragon_skin_30", "test"), 80.0));
   INFO(r.path.diagnosis);

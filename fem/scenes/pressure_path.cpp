@@ -4,6 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "fem/solver/volume_control.hpp"
+
 namespace softarm::fem {
 namespace {
 constexpr double kMPaPerKPa = 1e-3;
@@ -130,6 +132,39 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
   const double k0 = out.history.front().pv_stiffness_kPa_per_mm3;
   const double ratio = last.pv_stiffness_kPa_per_mm3 / k0;
   const bool flattened = ratio < spec.limit.stiffness_fraction || !last.tangent_positive_definite;
+  const bool flattening = ratio < 5 * spec.limit.stiffness_fraction;
+  if ((flattened || flattening) && spec.limit.follow_with_volume_control && out.history.size() >= 2) {
+    // Past the pressure maximum by prescribing the chamber volume instead.
+    const PressureState& prev = out.history[out.history.size() - 2];
+    double level = last.pressure_kPa / spec.max_pressure_kPa;
+    const double step = std::max(last.chamber_volume_mm3 - prev.chamber_volume_mm3, 1e-4 * last.chamber_volume_mm3);
+    VolumeControlProblem vp;
+    vp.apply_level = set_pressures;
+    vp.volume = [&](const Vector& xs) { return chamber.volume(xs); };
+    vp.volume_gradient = [&](const Vector& xs) { return chamber.gradient(xs); };
+    vp.pressure_per_level_MPa = spec.max_pressure_kPa * kMPaPerKPa;
+    const VolumeControlState before{prev.pressure_kPa / spec.max_pressure_kPa, prev.chamber_volume_mm3, 0,
+                                    prev.tangent_positive_definite};
+    const VolumeControlResult vc = follow_volume(problem, x, level, solver, vp, step, &before);
+    for (std::size_t i = 1; i < vc.states.size(); ++i)
+      out.beyond_limit.push_back({vc.states[i].level * spec.max_pressure_kPa, vc.states[i].volume, 0.0,
+                                  vc.states[i].tangent_positive_definite, vc.states[i].iterations, false});
+    out.path.stats.newton_iterations += vc.newton_iterations;
+    if (vc.passed_peak) {
+      out.outcome = PathOutcome::limit_point;
+      out.estimated_limit_pressure_kPa = vc.peak_level * spec.max_pressure_kPa;
+      out.reached_pressure_kPa = level * spec.max_pressure_kPa;
+      out.diagnosis = "limit point (ballooning) at " + fmt(out.estimated_limit_pressure_kPa) +
+                      " kPa: chamber-volume control followed the path past the pressure maximum (" + vc.message +
+                      ", the loaded volume growing from " + fmt(last.chamber_volume_mm3) + " to " +
+                      fmt(vc.states.back().volume) + " mm³). Pressure control cannot pass it; this is the burst "
+                      "mode of this design. The returned state is the one at the largest pressure.";
+      return out;
+    }
+    // No maximum: keep the pressure-controlled diagnosis below, with what volume control saw.
+    out.diagnosis = " Volume control from there: " + vc.message + ".";
+  }
+  const std::string volume_note = out.diagnosis;
   if (flattened) {
     out.outcome = PathOutcome::limit_point;
     out.estimated_limit_pressure_kPa = last.pressure_kPa;
@@ -145,18 +180,18 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
                     " kPa (dp/dV fell to " + fmt(100 * ratio, 3) + " % of its initial value" +
                     (last.tangent_positive_definite ? "" : ", tangent no longer positive definite") +
                     "); estimated peak pressure " + fmt(out.estimated_limit_pressure_kPa) +
-                    " kPa. Pressure control cannot pass it; this is the burst mode of this design.";
+                    " kPa. Pressure control cannot pass it; this is the burst mode of this design." + volume_note;
   } else {
     out.outcome = PathOutcome::stalled;
     // Well above the threshold the path is plainly not at a limit point; close to it,
     // the curve is flattening and a limit point may lie just ahead.
-    const bool flattening = ratio < 5 * spec.limit.stiffness_fraction;
     out.diagnosis = "solver stalled at " + fmt(last.pressure_kPa) + " kPa (" + to_string(out.path.failure) + ": " +
                     out.path.message + ") while dp/dV is " + fmt(100 * ratio, 3) + " % of its initial value" +
                     (flattening ? ": the pressure-volume curve is flattening and a limit point (ballooning) may lie "
                                   "just ahead, but none was reached. "
                                 : ", so this is not a limit point. ") +
-                    "Retry with a finer mesh, a smaller solver.initial_increment_fraction or more Newton iterations.";
+                    "Retry with a finer mesh, a smaller solver.initial_increment_fraction or more Newton iterations." +
+                    volume_note;
   }
   return out;
 }

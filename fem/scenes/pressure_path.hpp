@@ -34,15 +34,20 @@ inline const char* to_string(PathOutcome o) {
 struct LimitPointSettings {
   /// dp/dV below this fraction of its initial value, at a failed step, means a limit point.
   double stiffness_fraction = 0.05;
+  /// Where pressure control stops at (or near) a limit point, follow the path past it by
+  /// chamber-volume control (fem/solver/volume_control.hpp) to locate the pressure maximum.
+  bool follow_with_volume_control = true;
 };
 
 struct PressurePathResult {
   PathOutcome outcome = PathOutcome::completed;
   std::string diagnosis;              // human-readable explanation and retry advice
   double reached_pressure_kPa = 0.0;
-  double estimated_limit_pressure_kPa = 0.0;  // extrapolated peak of p(V) when a limit point is found
+  double estimated_limit_pressure_kPa = 0.0;  // peak of p(V) when a limit point is found: traced past by
+                                              // volume control, or extrapolated from the last states
   PathResult path;
-  std::vector<PressureState> history;  // every converged step
+  std::vector<PressureState> history;  // every converged step under pressure control
+  std::vector<PressureState> beyond_limit;  // volume control's states past the last one (pressure rises, then falls)
   // Linear-algebra cost of the whole path (for benchmarks).
   double analyse_s = 0.0, factorize_s = 0.0, solve_s = 0.0;
   int factorizations = 0, lu_fallbacks = 0;  // LU: the tangent was indefinite

@@ -1,0 +1,126 @@
+#include "fem/solver/volume_control.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace softarm::fem {
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(5);
+  s << v;
+  return s.str();
+}
+
+/// Newton on (x, λ) for V(x) = target; x and level are updated only on convergence.
+bool solve_constrained(const EnergyProblem& problem, Vector& x, double& level, LinearSolver& solver,
+                       const VolumeControlProblem& vp, double target, const VolumeControlSettings& s, int& iterations,
+                       bool& positive_definite) {
+  Vector xt = x;
+  double lt = level;
+  double scale0 = 0;
+  for (int it = 0; it < s.max_iterations; ++it) {
+    vp.apply_level(lt);
+    const Evaluation e = problem.evaluate(xt, true, true);
+    if (!e.status.ok) return false;
+    const double constraint = vp.volume(xt) - target;
+    const double r = e.gradient.norm();
+    if (it == 0) scale0 = std::max({r, e.force_scale(), 1e-12});
+    if (r <= s.residual_tolerance * std::max(scale0, e.force_scale()) &&
+        std::abs(constraint) <= s.volume_tolerance * std::abs(target)) {
+      x = xt;
+      level = lt;
+      iterations = it;
+      return true;
+    }
+    const LinearSolver::Status status = solver.factorize(e.hessian);
+    if (status == LinearSolver::Status::singular) return false;
+    positive_definite = status == LinearSolver::Status::positive_definite;
+    Vector g = vp.volume_gradient(xt);
+    problem.zero_prescribed(g);
+    const Vector a = solver.solve(-e.gradient);
+    const Vector b = solver.solve(vp.pressure_per_level_MPa * g);
+    const double gb = g.dot(b);
+    if (!a.allFinite() || !b.allFinite() || !(std::abs(gb) > 0)) return false;
+    const double dl = (-constraint - g.dot(a)) / gb;
+    xt += a + dl * b;
+    lt += dl;
+    if (!std::isfinite(lt)) return false;
+  }
+  return false;
+}
+
+}  // namespace
+
+VolumeControlResult follow_volume(const EnergyProblem& problem, Vector& x, double& level, LinearSolver& solver,
+                                  const VolumeControlProblem& vp, double initial_volume_step,
+                                  const VolumeControlState* previous, const VolumeControlSettings& settings) {
+  VolumeControlResult out;
+  if (previous) out.states.push_back(*previous);
+  double step = initial_volume_step;
+  const double min_step = initial_volume_step / 256;
+  Vector best_x = x;
+  double best_level = level;
+  out.states.push_back({level, vp.volume(x), 0, true});
+  std::size_t best = out.states.size() - 1;
+  const std::size_t first = out.states.size();  // states before this one were given, not computed
+  while (static_cast<int>(out.states.size() - first) < settings.max_steps) {
+    int iterations = 0;
+    bool positive_definite = true;
+    const double target = out.states.back().volume + step;
+    if (!solve_constrained(problem, x, level, solver, vp, target, settings, iterations, positive_definite)) {
+      step /= 2;
+      if (step < min_step) {
+        out.passed_peak = best > 0 && level < (1 - settings.drop_fraction) * best_level;
+        out.message = std::string(out.passed_peak ? "past the maximum, " : "") + "volume control stalled at V = " +
+                      fmt(out.states.back().volume) + " mm³ (level " + fmt(out.states.back().level) + ")";
+        break;
+      }
+      continue;
+    }
+    out.newton_iterations += iterations;
+    out.states.push_back({level, vp.volume(x), iterations, positive_definite});
+    if (level > best_level) {
+      best_level = level;
+      best_x = x;
+      best = out.states.size() - 1;
+    }
+    if (level >= 1) {
+      out.message = "the pressure rose back to the full load at V = " + fmt(out.states.back().volume) + " mm³";
+      break;
+    }
+    if (level < (1 - settings.drop_fraction) * best_level && best > 0) {
+      out.passed_peak = true;
+      out.message = "the pressure passed its maximum and fell to " + fmt(level / best_level * 100) + " % of it";
+      break;
+    }
+    if (iterations <= 4) step *= 1.5;
+  }
+  if (out.message.empty())
+    out.message = "no maximum within " + std::to_string(settings.max_steps) + " volume steps";
+  out.peak_level = best_level;
+  out.peak_volume = out.states[best].volume;
+  if (out.passed_peak && best > 0 && best + 1 < out.states.size()) {
+    // Vertex of the parabola λ(V) through the largest state and its neighbours.
+    const auto& s0 = out.states[best - 1];
+    const auto& s1 = out.states[best];
+    const auto& s2 = out.states[best + 1];
+    const double d01 = (s1.level - s0.level) / (s1.volume - s0.volume);
+    const double d12 = (s2.level - s1.level) / (s2.volume - s1.volume);
+    const double curvature = (d12 - d01) / (s2.volume - s0.volume);  // λ'' / 2
+    if (curvature < 0) {
+      const double slope_at_1 = d01 + curvature * (s1.volume - s0.volume);  // λ' at V1
+      const double dv = -slope_at_1 / (2 * curvature);
+      out.peak_volume = s1.volume + dv;
+      out.peak_level = s1.level + slope_at_1 * dv + curvature * dv * dv;
+    }
+  }
+  out.states.erase(out.states.begin(), out.states.begin() + static_cast<std::ptrdiff_t>(first - 1));  // from the start
+  x = best_x;
+  level = best_level;
+  vp.apply_level(level);
+  return out;
+}
+
+}  // namespace softarm::fem

@@ -1,0 +1,70 @@
+#pragma once
+// Chamber-volume control: follows an equilibrium path by prescribing the
+// loaded volume V = Σ f_i V_i instead of the load level λ (the pressure), so
+// it passes the pressure maximum where pressure control must stop (ballooning:
+// the p–V curve turns over). The unknowns are the positions x and λ; the
+// equations are equilibrium and the volume constraint,
+//
+//   r(x, λ) = ∇Π(x; λ) = 0,      V(x) − V* = 0,
+//
+// with ∂r/∂λ = −P ∇V (the chamber forms' potential is −λ·P·V, P the peak
+// pressure in MPa). Newton on both, by the bordering method: with K = ∂r/∂x
+// (the exact tangent, pressure stiffness included),
+//   K a = −r,   K b = P ∇V,   δλ = (V* − V − ∇V·a) / (∇V·b),   δx = a + δλ b.
+// The bordered matrix [K, −P∇V; ∇Vᵀ, 0] stays regular at the pressure maximum,
+// where K alone turns singular; past it K is indefinite and the linear solver
+// takes its LU route (Crisfield, Non-linear Finite Element Analysis of Solids
+// and Structures, vol. 1, §9.2–9.3: displacement control by a single
+// constraint; here the constraint is the chamber volume, the quantity a
+// syringe pump would prescribe).
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "fem/assembly/energy_problem.hpp"
+#include "fem/solver/linear_solver.hpp"
+
+namespace softarm::fem {
+
+struct VolumeControlSettings {
+  int max_steps = 60;
+  int max_iterations = 20;
+  double residual_tolerance = 1e-8;  // ‖r‖ / force scale, as Newton's
+  double volume_tolerance = 1e-10;   // |V − V*| / V*
+  double drop_fraction = 1e-3;       // the maximum is passed once λ falls this far below it (far above
+                                     // the equilibrium tolerance, so a fall is a fall)
+};
+
+struct VolumeControlState {
+  double level = 0, volume = 0;
+  int iterations = 0;
+  bool tangent_positive_definite = true;
+};
+
+struct VolumeControlResult {
+  bool passed_peak = false;
+  double peak_level = 0, peak_volume = 0;  // vertex of the parabola through the three states around the largest λ
+  std::vector<VolumeControlState> states;  // every converged state, in path order
+  std::string message;                     // why the continuation stopped
+  int newton_iterations = 0;
+};
+
+struct VolumeControlProblem {
+  std::function<void(double)> apply_level;                 // sets the loads for level λ
+  std::function<double(const Vector&)> volume;             // V(x)
+  std::function<Vector(const Vector&)> volume_gradient;    // ∇V(x), full dof vector
+  double pressure_per_level_MPa = 0;                       // P: the pressure at λ = 1
+};
+
+/// From the equilibrium (x, level) follows the path in volume steps starting at
+/// `initial_volume_step` until the level has fallen `drop_fraction` below its
+/// maximum, returns to 1 or more (the chamber stiffens again), or the steps run
+/// out. `previous`: the equilibrium state before (x, level) on the path, if known,
+/// so a maximum at (x, level) itself is recognised. On return x holds the state
+/// with the largest level and `level` its level; `states` starts with (x, level).
+VolumeControlResult follow_volume(const EnergyProblem& problem, Vector& x, double& level, LinearSolver& solver,
+                                  const VolumeControlProblem& vp, double initial_volume_step,
+                                  const VolumeControlState* previous = nullptr,
+                                  const VolumeControlSettings& settings = {});
+
+}  // namespace softarm::fem
