@@ -187,7 +187,8 @@ StudySpec read_study(const json& document, const std::filesystem::path& base_dir
     try {
       return fem::read_scene_config(s.scene);
     } catch (const InputError& e) {
-      throw InputError("scene." + e.field(), std::string(e.what()).substr(std::string("input error: ").size()));
+      const std::string prefix = InputError(e.field(), "").what();  // "input error: 'field': "
+      throw InputError("scene." + e.field(), std::string(e.what()).substr(prefix.size()));
     }
   }();
   if (base.scene == "spl")
