@@ -5,17 +5,13 @@
 #include <map>
 
 #include "fem/core/input_error.hpp"
-#include "fem/reduced/arm_rod.hpp"
-#include "fem/reduced/fibre_law.hpp"
-#include "fem/reduced/rra_calibration.hpp"
+#include "fem/reduced/reduced_scenes.hpp"
 #include "fem/scenes/scene_config.hpp"
 
 namespace softarm::studies {
 using nlohmann::json;
 
 namespace {
-
-constexpr double kDeg = 57.295779513082320876;
 
 double rounded(double x, double digits = 1e4) { return std::round(x * digits) / digits; }
 
@@ -89,13 +85,12 @@ json evaluate_rra_fem(const StudySpec& spec, const fem::RraSceneSpec& scene) {
 }
 
 json evaluate_rra_rod(const fem::RraSceneSpec& scene) {
-  const fem::FibreLaw law(*scene.tube_material.law);
+  const fem::ReducedRraResult r = fem::run_reduced_rra(scene);
   json out;
   json& curve = out["curve"];
-  curve["pressure_kPa"] = scene.path.output_pressures_kPa;
+  curve["pressure_kPa"] = r.pressure_kPa;
   curve["extension_mm"] = json::array();
-  for (double p : scene.path.output_pressures_kPa) curve["extension_mm"].push_back(
-      finite_or_null(fem::rod_rra_extension_mm(scene.design, law, p, 1.0)));
+  for (double e : r.extension_mm) curve["extension_mm"].push_back(finite_or_null(e));
   out["extension_mm"] = curve["extension_mm"].back();
   out["reached_pressure_kPa"] = scene.path.max_pressure_kPa;
   out["max_pressure_kPa"] = scene.path.max_pressure_kPa;
@@ -104,61 +99,33 @@ json evaluate_rra_rod(const fem::RraSceneSpec& scene) {
   return out;
 }
 
-/// Pressure at which the bending angle first reaches `target` (linear between samples), or null.
-json pressure_at(const std::vector<double>& p, const std::vector<double>& angle, double target) {
-  for (std::size_t i = 1; i < p.size(); ++i)
-    if (angle[i - 1] < target && angle[i] >= target)
-      return p[i - 1] + (target - angle[i - 1]) * (p[i] - p[i - 1]) / (angle[i] - angle[i - 1]);
-  return nullptr;
-}
-
 json evaluate_tca_rod(const StudySpec& spec, const fem::TcaSceneSpec& scene) {
-  const auto& pc = scene.chamber_pressure_kPa;
-  if (pc[1] != pc[2] || std::abs(scene.gravity_m_s2.y()) > 0)
-    throw fem::InputError("scene.load", "the rod model is planar: it needs chambers 2 and 3 at equal pressure and "
-                                        "gravity in the x–z plane (use model fem)");
-  fem::ArmRodSpec rod_spec;
-  fem::RodPiece piece;
-  piece.design = scene.design;
-  rod_spec.pieces = {piece};
-  rod_spec.tube = scene.tube_material;
-  rod_spec.sheath = scene.sheath_material;
-  rod_spec.rings = scene.ring_material;
-  rod_spec.nodes_per_segment = spec.rod_nodes;
-  const fem::ArmRod rod(rod_spec);
-  fem::RodLoad load;
-  load.chamber_pressure_kPa = {pc};
-  load.gravity_m_s2 = {scene.gravity_m_s2.x(), scene.gravity_m_s2.z()};
-  const double p_max = std::max({pc[0], pc[1], pc[2]});
-  const int steps = std::max<int>(12, static_cast<int>(scene.output_pressures_kPa.size()));
-  std::vector<double> p, angle;
-  const fem::RodState st = rod.follow(load, steps, [&](double f, const fem::RodState& s) {
-    p.push_back(f * p_max);
-    angle.push_back(rod.tip_rotation(s, load) * kDeg);
-  });
+  const fem::ReducedTcaResult r = fem::run_reduced_tca(scene, spec.rod_nodes);
+  const fem::RodState& st = r.final_state;
+  const double p_max = std::max({scene.chamber_pressure_kPa[0], scene.chamber_pressure_kPa[1], scene.chamber_pressure_kPa[2]});
   json out;
-  out["curve"] = {{"pressure_kPa", p}, {"bending_deg", angle}};
-  out["bending_deg"] = angle.empty() ? 0.0 : angle.back();
-  out["pressure_for_target_kPa"] = pressure_at(p, angle, scene.target_bending_deg);
-  out["mass_g"] = rod.mass_kg() * 1e3;
-  out["reached_pressure_kPa"] = p.empty() ? 0.0 : p.back();
+  out["curve"] = {{"pressure_kPa", r.pressure_kPa}, {"bending_deg", r.bending_deg}};
+  out["bending_deg"] = r.bending_deg.empty() ? 0.0 : r.bending_deg.back();
+  out["pressure_for_target_kPa"] = r.target_pressure_kPa ? json(*r.target_pressure_kPa) : json(nullptr);
+  out["mass_g"] = r.mass_kg * 1e3;
+  out["reached_pressure_kPa"] = r.pressure_kPa.empty() ? 0.0 : r.pressure_kPa.back();
   out["max_pressure_kPa"] = p_max;
   out["tip_x_mm"] = st.x.back();
   out["tip_z_mm"] = st.z.back();
-  const fem::PieceExtremes ex = rod.extremes(st, load, 0);
-  out["tube_max_stretch"] = ex.tube_max_stretch;
-  out["sheath_max_stretch"] = ex.sheath_max_stretch;
-  double utilisation = std::max(criteria_ab(scene.tube_material, 0, ex.tube_max_stretch, spec.safety_factor),
-                                criteria_ab(scene.sheath_material, 0, ex.sheath_max_stretch, spec.safety_factor));
+  out["tube_max_stretch"] = r.extremes.tube_max_stretch;
+  out["sheath_max_stretch"] = r.extremes.sheath_max_stretch;
+  double utilisation = std::max(criteria_ab(scene.tube_material, 0, r.extremes.tube_max_stretch, spec.safety_factor),
+                                criteria_ab(scene.sheath_material, 0, r.extremes.sheath_max_stretch, spec.safety_factor));
   if (!st.converged) {
     out["diagnosis"] = st.diagnosis;
-    if (!p.empty() && p.back() > 0) utilisation = std::max(utilisation, p_max / p.back());  // criterion (c)
+    if (!r.pressure_kPa.empty() && r.pressure_kPa.back() > 0)
+      utilisation = std::max(utilisation, p_max / r.pressure_kPa.back());  // criterion (c)
   }
   out["burst_utilisation"] = utilisation;
   // The centreline and the envelope's half-width (RRA axis distance + outer radius + sheath).
   json shape = {{"kind", "rod_centreline"}, {"x_mm", json::array()}, {"z_mm", json::array()},
                 {"half_width_mm", json::array()}};
-  const auto& s_ref = rod.arc_length();
+  const auto s_ref = fem::reduced_tca_rod(scene, spec.rod_nodes).arc_length();
   const double length = scene.design.actuator.length_mm;
   for (std::size_t i = 0; i < st.x.size(); ++i) {
     const double z_ref = length - s_ref[i];  // the clamp is the top face (z = l)
@@ -170,7 +137,7 @@ json evaluate_tca_rod(const StudySpec& spec, const fem::TcaSceneSpec& scene) {
   }
   out["shape"] = shape;
   out["model"] = "rod, " + std::to_string(spec.rod_nodes) + " nodes";
-  out["dofs"] = 3 * rod.node_count();
+  out["dofs"] = 3 * r.nodes;
   return out;
 }
 

@@ -1,0 +1,38 @@
+#pragma once
+// The reduced model of the rra and tca scenes (the cheapest rung of the
+// fidelity ladder, fem/scenes/fidelity.hpp): the same scene specs as the FEM
+// runners, answered by the planar rod of arm_rod.hpp.
+//   rra: the lone RRA's extension by the rod with an uncalibrated chamber force
+//        (the FEM-calibrated factor needs the FEM itself; README, reduced model);
+//   tca: the 3CA as one rod piece, top clamped, chambers 2 and 3 at equal
+//        pressure and gravity in the x–z plane (the rod is planar: anything else
+//        is refused with the field named).
+#include <string>
+#include <vector>
+
+#include "fem/reduced/arm_rod.hpp"
+#include "fem/scenes/rra_scene.hpp"
+#include "fem/scenes/tca_scene.hpp"
+
+namespace softarm::fem {
+
+struct ReducedRraResult {
+  std::vector<double> pressure_kPa, extension_mm;  // at the scene's output pressures
+  double seconds = 0;
+};
+ReducedRraResult run_reduced_rra(const RraSceneSpec& spec);
+
+struct ReducedTcaResult {
+  std::vector<double> pressure_kPa, bending_deg;  // every continuation step, rest excluded
+  std::optional<double> target_pressure_kPa;      // where the bending reaches spec.target_bending_deg
+  RodState final_state;                           // converged=false: the path stopped (diagnosis inside)
+  PieceExtremes extremes;                         // fibre extremes at the final state
+  double mass_kg = 0, seconds = 0;
+  int nodes = 0;
+};
+/// `nodes`: rod nodes along the 3CA (17 by default: converged to 0.1 % on the thesis 3CA, README).
+ReducedTcaResult run_reduced_tca(const TcaSceneSpec& spec, int nodes = 17);
+/// The rod of a tca scene (for shapes: arc length, node count).
+ArmRod reduced_tca_rod(const TcaSceneSpec& spec, int nodes = 17);
+
+}  // namespace softarm::fem
