@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <iomanip>
 #include <iostream>
 
 #include "engine/design/design_command.hpp"
@@ -9,6 +10,7 @@
 #include "engine/design/design_measures.hpp"
 #include "engine/optimiser/optimiser.hpp"
 #include "engine/material_command.hpp"
+#include "engine/reduced_simulate.hpp"
 #include "engine/study/study_command.hpp"
 #include "studies/study_spec.hpp"
 #include "engine/rra_report.hpp"
@@ -45,8 +47,18 @@ int simulate(const std::string& file, const std::string& output_override, int me
              int element_order_override) {
   fem::SceneConfig config = fem::load_scene_config(file);
   if (!output_override.empty()) config.output.directory = output_override;
+  if ((mesh_level_override > 0 || element_order_override > 0) && config.selection) {
+    std::cout << "--mesh-level / --element-order override the fidelity ladder's choice (" << config.selection->level.name
+              << ")\n";
+    config.selection.reset();
+    config.reduced = false;
+  }
   if (mesh_level_override > 0) config.mesh_level() = mesh_level_override;
   if (element_order_override > 0) config.element_order() = element_order_override;
+  if (config.selection)
+    std::cout << "model (fidelity ladder): " << config.selection->level.name << ", expected error "
+              << config.selection->level.error_percent << " % — " << config.selection->reason << "\n";
+  if (config.reduced) return simulate_reduced(config);
   std::cout << "softarm simulate: " << file << " (scene " << config.scene << ", mesh level " << config.mesh_level() << ", element order " << config.element_order()
             << ", threads " << fem::thread_count() << ")\n";
   if (config.scene == "tca") return simulate_tca(config);
@@ -149,6 +161,20 @@ void print_schema(const std::string& scene) {
   print_fields("scene \"" + scene + "\" config keys");
 }
 
+void print_fidelity_ladders() {
+  for (const std::string scene : {"rra", "tca", "spl"}) {
+    const fem::FidelityLadder& ladder = fem::fidelity_ladder(scene);
+    std::cout << "scene " << scene << " (errors against " << ladder.reference << "):\n";
+    for (const auto& m : ladder.levels)
+      std::cout << "  " << std::left << std::setw(48) << m.name << std::right << std::setw(9) << m.dofs << " dofs "
+                << std::setw(7) << m.seconds << " s  error " << std::setw(5) << m.error_percent << " %  (" << m.error_measure
+                << ")\n";
+  }
+  std::cout << "fidelity: fast = within " << fem::fidelity_target_percent("fast") << " %, balanced = "
+            << fem::fidelity_target_percent("balanced") << " %, accurate = " << fem::fidelity_target_percent("accurate")
+            << " %: the cheapest model that meets it\n";
+}
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
@@ -202,6 +228,8 @@ int run_cli(int argc, char** argv) {
   study->add_flag("--fresh", study_options.fresh, "discard earlier results instead of resuming");
   study->add_flag("--retry-failed", study_options.retry_failed, "recompute points recorded as failed");
   study->add_flag("--report-only", study_options.report_only, "write the reports from the results on disk");
+  auto* fidelity = app.add_subcommand("fidelity", "the fidelity ladder: each scene's models with measured error and cost "
+                                                  "(what model.fidelity / model.target_error_percent choose from)");
   add_material_command(app);
 
   try {
@@ -217,6 +245,10 @@ int run_cli(int argc, char** argv) {
     if (*sim) return simulate(scene_file, output_dir, mesh_level, element_order);
     if (*design) return run_design(design_file, design_overrides);
     if (*study) return run_study_command(study_options);
+    if (*fidelity) {
+      print_fidelity_ladders();
+      return 0;
+    }
     if (*exp) return export_deck(scene_file, deck_path, deck_pressure_kPa, mesh_level);
     if (*schema) {
       print_schema(schema_scene);

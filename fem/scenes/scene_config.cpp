@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "fem/core/json_reader.hpp"
+#include "fem/scenes/fidelity.hpp"
 
 namespace softarm::fem {
 using fem::InputError;
@@ -73,8 +74,35 @@ void read_mesh(JsonReader& mesh, int& level, int& order, int max_level, const st
   order = mesh.integer("element_order", order, Range::closed(1, 2), order_doc);
 }
 
-fem::RraSceneSpec read_rra(JsonReader& root) {
-  fem::RraSceneSpec spec;
+/// The "model" object: symmetry (3D scenes) and the fidelity request (every scene).
+struct ModelRequest {
+  bool allow_symmetry = true;
+  std::optional<double> target_error_percent;  // from fidelity or target_error_percent
+  std::string asked;                           // the request in the user's words
+};
+
+ModelRequest read_model(JsonReader& root, bool three_dimensional) {
+  ModelRequest r;
+  auto model = root.object("model", "model choice: symmetry and fidelity");
+  if (three_dimensional)
+    r.allow_symmetry = model.choice("symmetry", "auto", {"auto", "off"},
+                                    "auto: solve a half model when pressures and gravity are mirror-symmetric") == "auto";
+  const std::string fidelity =
+      model.choice("fidelity", "", {"", "fast", "balanced", "accurate"},
+                   "pick the model by the fidelity ladder (softarm fidelity): fast (within 25 %), balanced (2 %), "
+                   "accurate (0.5 %); the cheapest measured level that meets it; empty: mesh.level as given");
+  const auto target = model.optional_number("target_error_percent", Range::open(0, 100),
+                                            "pick the cheapest model whose measured error is within this (%)");
+  if (!fidelity.empty() && target)
+    throw InputError(model.field("target_error_percent"), "give model.fidelity or model.target_error_percent, not both");
+  if (!fidelity.empty()) r.target_error_percent = fidelity_target_percent(fidelity), r.asked = "fidelity '" + fidelity + "'";
+  if (target) r.target_error_percent = *target, r.asked = "target error " + std::to_string(*target) + " %";
+  model.finish();
+  return r;
+}
+
+RraSceneSpec read_rra(JsonReader& root, ModelRequest& model_request) {
+  RraSceneSpec spec;
   auto geometry = root.object("geometry", "RRA geometry (physical or normalised sizes)");
   spec.design = fem::read_rra_design(geometry);
   geometry.finish();
@@ -93,17 +121,9 @@ fem::RraSceneSpec read_rra(JsonReader& root) {
   spec.treatment = treatment == "pointwise" ? fem::VolumetricTreatment::pointwise : fem::VolumetricTreatment::projected_dilatation;
   mesh.finish();
 
+  model_request = read_model(root, false);
   spec.path = read_load(root.object("load", "loading"), root.object("solver", "nonlinear solver controls"));
   return spec;
-}
-
-/// model.symmetry: may the scene use a half model?
-bool read_symmetry(JsonReader& root) {
-  auto model = root.object("model", "model reduction");
-  const bool allow = model.choice("symmetry", "auto", {"auto", "off"},
-                                  "auto: solve a half model when pressures and gravity are mirror-symmetric") == "auto";
-  model.finish();
-  return allow;
 }
 
 /// load.chamber_pressures_kPa: exactly `count` peaks (kPa), ramped together.
@@ -125,8 +145,8 @@ void read_actuator_materials(JsonReader& materials, fem::Material& tube, fem::Ma
 
 std::optional<Eigen::Vector3d> read_vector3(JsonReader& r, const std::string& key, const std::string& doc);
 
-fem::TcaSceneSpec read_tca(JsonReader& root) {
-  fem::TcaSceneSpec spec;
+TcaSceneSpec read_tca(JsonReader& root, ModelRequest& model_request) {
+  TcaSceneSpec spec;
   auto geometry = root.object("geometry", "3CA geometry: the RRA keys plus spacing, sheath and centre hole");
   spec.design = fem::read_tca_design(geometry);
 
@@ -139,7 +159,9 @@ fem::TcaSceneSpec read_tca(JsonReader& root) {
             "1: trilinear Hex8/P0 (mean dilatation; locks in bending at coarse levels); 2: triquadratic Hex27/P1");
   mesh.finish();
 
-  spec.allow_symmetry = read_symmetry(root);
+  const ModelRequest request = read_model(root, true);
+  spec.allow_symmetry = request.allow_symmetry;
+  model_request = request;
 
   auto load = root.object("load", "loading");
   const auto pressures = read_chamber_pressures(load, 3, "1, 2, 3");
@@ -166,8 +188,8 @@ std::optional<Eigen::Vector3d> read_vector3(JsonReader& r, const std::string& ke
   return Eigen::Vector3d(v[0], v[1], v[2]);
 }
 
-fem::SplSceneSpec read_spl(JsonReader& root) {
-  fem::SplSceneSpec spec;
+SplSceneSpec read_spl(JsonReader& root, ModelRequest& model_request) {
+  SplSceneSpec spec;
   auto geometry = root.object("geometry", "SPL geometry: taper ratio, distal radius, connectors, 3CA and RRA keys");
   spec.design = fem::read_spl_design(geometry);
   geometry.finish();
@@ -181,7 +203,9 @@ fem::SplSceneSpec read_spl(JsonReader& root) {
   read_mesh(mesh, spec.mesh_level, spec.element_order, 2,
             "1: trilinear Hex8/P0 (a quick preview: locks in bending); 2: triquadratic Hex27/P1");
   mesh.finish();
-  spec.allow_symmetry = read_symmetry(root);
+  const ModelRequest request = read_model(root, true);
+  spec.allow_symmetry = request.allow_symmetry;
+  model_request = request;
 
   auto load = root.object("load", "loading");
   const auto pressures = read_chamber_pressures(load, 9, "1–9; segment n holds 3n−2 … 3n");
@@ -205,12 +229,27 @@ SceneConfig read_scene_config(const nlohmann::json& document) {
   config.scene = root.choice("scene", "rra", {"rra", "tca", "spl"},
                              "which assembly to simulate: rra (ring-reinforced actuator), tca (three-chambered "
                              "actuator), spl (the Soft Poly-Limb arm)");
+  ModelRequest request;
   if (config.scene == "tca")
-    config.tca = read_tca(root);
+    config.tca = read_tca(root, request);
   else if (config.scene == "spl")
-    config.spl = read_spl(root);
+    config.spl = read_spl(root, request);
   else
-    config.rra = read_rra(root);
+    config.rra = read_rra(root, request);
+  if (request.target_error_percent) {
+    // The ladder sets the mesh: a level given by hand as well would be ambiguous.
+    const nlohmann::json& mesh = document.contains("mesh") ? document["mesh"] : nlohmann::json::object();
+    if (mesh.contains("level") || mesh.contains("element_order"))
+      throw InputError("model.fidelity", "the fidelity ladder picks mesh.level and mesh.element_order: give either "
+                                         "those or model.fidelity / model.target_error_percent");
+    config.selection = select_model(config.scene, *request.target_error_percent);
+    config.selection->reason = request.asked + ": " + config.selection->reason;
+    config.reduced = config.selection->level.reduced;
+    if (!config.reduced) {
+      config.mesh_level() = config.selection->level.mesh_level;
+      config.element_order() = config.selection->level.element_order;
+    }
+  }
   auto output = root.object("output", "where results go");
   config.output.directory = output.string("directory", "out/" + config.scene, "output directory (created if absent)");
   config.output.vtu = output.boolean("vtu", true, "write the deformed mesh as VTU for ParaView");

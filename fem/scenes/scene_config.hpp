@@ -7,6 +7,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include <optional>
+
+#include "fem/scenes/fidelity.hpp"
 #include "fem/scenes/rra_scene.hpp"
 #include "fem/scenes/spl_scene.hpp"
 #include "fem/scenes/tca_scene.hpp"
@@ -25,6 +28,9 @@ struct SceneConfig {
   SplSceneSpec spl;    // scene "spl"
   OutputSpec output;
   bool verbose = false;
+  /// model.fidelity / model.target_error_percent: the level the fidelity ladder chose, and why.
+  std::optional<ModelSelection> selection;
+  bool reduced = false;  // the chosen level is the reduced (rod) model
   int& mesh_level() { return scene == "tca" ? tca.mesh_level : scene == "spl" ? spl.mesh_level : rra.mesh_level; }
   int& element_order() { return scene == "tca" ? tca.element_order : scene == "spl" ? spl.element_order : rra.element_order; }
 };

@@ -1,0 +1,64 @@
+#include "engine/reduced_simulate.hpp"
+
+#include <iomanip>
+#include <iostream>
+
+#include "engine/output_files.hpp"
+#include "fem/reduced/reduced_scenes.hpp"
+
+namespace softarm::engine {
+namespace {
+
+/// Prints and writes a two-column curve.
+void write_curve(const fem::SceneConfig& config, const std::string& column, const std::vector<double>& p,
+                 const std::vector<double>& y) {
+  std::ofstream csv = open_output_file(config.output.directory, "curve.csv");
+  csv << "pressure_kPa," << column << "\n";
+  std::cout << std::setw(14) << "pressure_kPa" << std::setw(16) << column << "\n";
+  for (std::size_t i = 0; i < p.size() && i < y.size(); ++i) {
+    csv << p[i] << "," << y[i] << "\n";
+    std::cout << std::fixed << std::setprecision(2) << std::setw(14) << p[i] << std::setprecision(3) << std::setw(16)
+              << y[i] << "\n";
+  }
+  std::cout.unsetf(std::ios::floatfield);
+}
+
+nlohmann::json model_json(const fem::SceneConfig& config) {
+  const auto& s = *config.selection;
+  return {{"name", s.level.name},
+          {"expected_error_percent", s.level.error_percent},
+          {"error_measure", s.level.error_measure},
+          {"reason", s.reason}};
+}
+
+}  // namespace
+
+int simulate_reduced(const fem::SceneConfig& config) {
+  if (config.scene == "rra") {
+    const fem::ReducedRraResult r = fem::run_reduced_rra(config.rra);
+    write_curve(config, "extension_mm", r.pressure_kPa, r.extension_mm);
+    std::cout << "extension at " << r.pressure_kPa.back() << " kPa: " << r.extension_mm.back() << " mm (rod, "
+              << r.seconds << " s)\n";
+    write_json_file(config.output.directory, "summary.json",
+                    {{"scene", "rra"}, {"model", model_json(config)}, {"pressure_kPa", r.pressure_kPa},
+                     {"extension_mm", r.extension_mm}, {"seconds", r.seconds}});
+    std::cout << "written: " << config.output.directory << "/curve.csv, " << config.output.directory << "/summary.json\n";
+    return 0;
+  }
+  const fem::ReducedTcaResult r = fem::run_reduced_tca(config.tca);
+  write_curve(config, "bending_deg", r.pressure_kPa, r.bending_deg);
+  std::cout << "mass " << r.mass_kg * 1e3 << " g; " << config.tca.target_bending_deg << "° ";
+  if (r.target_pressure_kPa) std::cout << "at " << *r.target_pressure_kPa << " kPa";
+  else std::cout << "not reached";
+  std::cout << " (rod, " << r.nodes << " nodes, " << r.seconds << " s)\n";
+  if (!r.final_state.converged) std::cout << "outcome: stopped — " << r.final_state.diagnosis << "\n";
+  write_json_file(config.output.directory, "summary.json",
+                  {{"scene", "tca"}, {"model", model_json(config)}, {"pressure_kPa", r.pressure_kPa},
+                   {"bending_deg", r.bending_deg},
+                   {"target_pressure_kPa", r.target_pressure_kPa ? nlohmann::json(*r.target_pressure_kPa) : nlohmann::json()},
+                   {"mass_kg", r.mass_kg}, {"seconds", r.seconds}});
+  std::cout << "written: " << config.output.directory << "/curve.csv, " << config.output.directory << "/summary.json\n";
+  return r.final_state.converged ? 0 : 1;
+}
+
+}  // namespace softarm::engine

@@ -1,0 +1,77 @@
+#include "fem/scenes/fidelity.hpp"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace softarm::fem {
+namespace {
+
+std::string percent(double x) {
+  std::ostringstream s;
+  s.precision(3);
+  s << x << " %";
+  return s.str();
+}
+
+// Thesis RRA, extension at 206.8 kPa; reference Q2/P1 level 4 (77.139 mm, 350,178 dofs, 284 s):
+// bench_rra_levels and bench_reduced_model. Times on one thread: Q2/P1 level 1 idle (0.56–0.77 s,
+// README); the others from one bench_rra_levels run beside another solve, as ratios to level 1
+// there (Q1/P0 level 1: 0.25×, Q2/P1 level 3: 68×) applied to the idle 0.6 s.
+FidelityLadder rra_ladder() {
+  const std::string what = "extension of the thesis RRA at 206.8 kPa";
+  return {"rra",
+          "axisymmetric Q2/P1 level 4 (350,178 dofs): 77.139 mm",
+          {{"reduced rod (uncalibrated chamber force)", true, 0, 0, 8.9, what, 0.01, 0},
+           {"axisymmetric Q1/P0, level 1", false, 1, 1, 1.44, what, 0.15, 2222},
+           {"axisymmetric Q2/P1, level 1", false, 1, 2, 0.61, what, 0.6, 6030},
+           {"axisymmetric Q2/P1, level 3", false, 3, 2, 0.35, what, 40, 88818}}};
+}
+
+// Thesis 3CA, two chambers to 344.7 kPa with gravity; reference 3D Hex27/P1 level 1 (the finest
+// that fits this machine: level 2 has 614k dofs). The rod's error is its worst along the curve
+// (33.3° vs 42.2° at 137.9 kPa); at the 90° pressure it is 1.2 % (297.2 vs 293.8 kPa).
+FidelityLadder tca_ladder() {
+  return {"tca",
+          "3D Hex27/P1 level 1, half model (82,350 dofs); not shown converged",
+          {{"reduced rod, 17 nodes", true, 0, 0, 21.0, "bending angle along the curve (worst point)", 0.05, 51},
+           {"3D Hex27/P1, level 1", false, 1, 2, 0, "reference", 900, 82350}}};
+}
+
+// SPL: no reduced 3D pose yet (the arm rod is planar); Hex8 is a qualitative preview (it locks in
+// bending: the 3CA reaches 34° instead of 107° at 344.7 kPa, −68 %).
+FidelityLadder spl_ladder() {
+  return {"spl",
+          "3D Hex27/P1 level 1 (493,566 dofs, full model; not run on this machine)",
+          {{"3D Hex8/P0, level 1 (preview: locks in bending)", false, 1, 1, 68, "3CA bending at 344.7 kPa", 442, 66132},
+           {"3D Hex27/P1, level 1", false, 1, 2, 0, "reference", 0, 493566}}};
+}
+
+}  // namespace
+
+const FidelityLadder& fidelity_ladder(const std::string& scene) {
+  static const FidelityLadder rra = rra_ladder(), tca = tca_ladder(), spl = spl_ladder();
+  if (scene == "rra") return rra;
+  if (scene == "tca") return tca;
+  if (scene == "spl") return spl;
+  throw std::invalid_argument("fidelity_ladder: unknown scene " + scene);
+}
+
+double fidelity_target_percent(const std::string& fidelity) {
+  if (fidelity == "fast") return 25;
+  if (fidelity == "balanced") return 2;
+  if (fidelity == "accurate") return 0.5;
+  throw std::invalid_argument("fidelity_target_percent: unknown fidelity " + fidelity);
+}
+
+ModelSelection select_model(const std::string& scene, double target_percent) {
+  const FidelityLadder& ladder = fidelity_ladder(scene);
+  for (const ModelLevel& m : ladder.levels)
+    if (m.error_percent <= target_percent)
+      return {m, "the cheapest model within " + percent(target_percent) + ": measured error " +
+                     percent(m.error_percent) + " (" + m.error_measure + ") against " + ladder.reference};
+  const ModelLevel& best = ladder.levels.back();
+  return {best, "no model is measured within " + percent(target_percent) + "; the most accurate one has " +
+                    percent(best.error_percent) + " against " + ladder.reference};
+}
+
+}  // namespace softarm::fem

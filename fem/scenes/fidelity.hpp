@@ -1,0 +1,47 @@
+#pragma once
+// The fidelity ladder (issue 6): for each scene, the models softarm has, each
+// with its measured error against the best reference this machine can compute
+// and its cost, cheapest first. A scene asks for "fidelity" (fast, balanced,
+// accurate) or a "target_error_percent" in its "model" object; the cheapest
+// level whose measured error meets the target is used, and softarm prints
+// which and why. Models dominated by a cheaper, more accurate one (RRA Q2/P1
+// level 2, every Q1/P0 level beyond 1, the 3CA's Hex8, which locks) are not on
+// the ladder.
+//
+// The numbers are measurements on the thesis designs (README: "Results: the
+// thesis RRA", "The 3CA and SPL scenes", "Reduced model"), not estimates; a
+// design far from the thesis' may see other errors.
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace softarm::fem {
+
+struct ModelLevel {
+  std::string name;               // "axisymmetric Q2/P1, level 1"
+  bool reduced = false;           // the rod of fem/reduced instead of the FEM
+  int mesh_level = 1, element_order = 2;
+  double error_percent = 0;       // measured, against `reference`; 0 for the reference itself
+  std::string error_measure;      // what was compared
+  double seconds = 0;             // typical wall time on one core of this machine
+  int dofs = 0;
+};
+
+struct FidelityLadder {
+  std::string scene, reference;   // reference: what the errors are measured against
+  std::vector<ModelLevel> levels;  // cheapest first
+};
+
+const FidelityLadder& fidelity_ladder(const std::string& scene);
+
+/// Target error of a named fidelity: fast 25 %, balanced 2 %, accurate 0.5 %.
+double fidelity_target_percent(const std::string& fidelity);
+
+struct ModelSelection {
+  ModelLevel level;
+  std::string reason;  // "cheapest level within 2 % (measured 0.61 % vs …)"
+};
+/// The cheapest level within `target_percent`; if none is, the most accurate, and the reason says so.
+ModelSelection select_model(const std::string& scene, double target_percent);
+
+}  // namespace softarm::fem

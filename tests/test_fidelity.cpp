@@ -1,0 +1,108 @@
+// The fidelity ladder (fem/scenes/fidelity.hpp): a scene's fidelity request
+// picks the level, conflicting requests are refused with the field named, and
+// the ladder's measured errors still hold for the cheap levels (re-measured
+// here against the ladder's reference value, so a model change that moves
+// them fails this test instead of leaving a stale table).
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "fem/core/input_error.hpp"
+#include "fem/core/json_reader.hpp"
+#include "fem/reduced/reduced_scenes.hpp"
+#include "fem/scenes/fidelity.hpp"
+#include "fem/scenes/scene_config.hpp"
+
+using namespace softarm::fem;
+using nlohmann::json;
+
+namespace {
+
+json thesis_scene(const std::string& file) {
+  return load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/" + file);
+}
+
+// The ladder's reference for the RRA: Q2/P1 level 4 (bench_rra_levels, README).
+constexpr double kRraReferenceMm = 77.139;
+
+}  // namespace
+
+TEST_CASE("a scene's fidelity request picks the cheapest level that meets it", "[fidelity]") {
+  json rra = thesis_scene("rra_thesis.json");
+  rra.erase("mesh");
+  rra["model"] = {{"fidelity", "fast"}};
+  SceneConfig c = read_scene_config(rra);
+  REQUIRE(c.selection);
+  CHECK(c.reduced);
+  CHECK(c.selection->reason.find("fidelity 'fast'") != std::string::npos);
+
+  rra["model"] = {{"fidelity", "accurate"}};
+  c = read_scene_config(rra);
+  CHECK_FALSE(c.reduced);
+  CHECK(c.rra.mesh_level == 3);
+  CHECK(c.rra.element_order == 2);
+
+  rra["model"] = {{"target_error_percent", 1.0}};
+  c = read_scene_config(rra);
+  CHECK(c.rra.mesh_level == 1);
+  CHECK(c.rra.element_order == 2);
+
+  rra["model"] = {{"target_error_percent", 0.01}};  // nothing measured is that good: the best, and say so
+  c = read_scene_config(rra);
+  CHECK(c.rra.mesh_level == 3);
+  CHECK(c.selection->reason.find("no model is measured within") != std::string::npos);
+
+  json tca = thesis_scene("tca_thesis.json");
+  tca.erase("mesh");
+  tca["model"] = {{"symmetry", "auto"}, {"fidelity", "balanced"}};
+  c = read_scene_config(tca);
+  CHECK_FALSE(c.reduced);  // the rod's worst error along the curve is 21 %
+  CHECK(c.tca.element_order == 2);
+  tca["model"]["fidelity"] = "fast";
+  CHECK(read_scene_config(tca).reduced);
+}
+
+TEST_CASE("a fidelity request beside a hand-set mesh, or two requests, is refused with the field named", "[fidelity]") {
+  json rra = thesis_scene("rra_thesis.json");  // has mesh.level
+  rra["model"] = {{"fidelity", "fast"}};
+  CHECK_THROWS_WITH(read_scene_config(rra), Catch::Contains("'model.fidelity'"));
+  rra.erase("mesh");
+  rra["model"] = {{"fidelity", "fast"}, {"target_error_percent", 3}};
+  CHECK_THROWS_WITH(read_scene_config(rra), Catch::Contains("'model.target_error_percent'"));
+  rra["model"] = {{"fidelity", "quick"}};
+  CHECK_THROWS_AS(read_scene_config(rra), InputError);
+}
+
+TEST_CASE("the RRA ladder's measured errors hold for its cheap levels", "[fidelity]") {
+  json rra = thesis_scene("rra_thesis.json");
+  rra["output"]["vtu"] = false;
+  for (const ModelLevel& m : fidelity_ladder("rra").levels) {
+    if (m.seconds > 5) continue;  // level 3 (20 s) is covered by bench_rra_levels, not by the suite
+    rra["mesh"] = {{"level", std::max(1, m.mesh_level)}, {"element_order", std::max(1, m.element_order)}};
+    const SceneConfig c = read_scene_config(rra);
+    const double extension = m.reduced ? run_reduced_rra(c.rra).extension_mm.back()
+                                       : run_rra_scene(c.rra).curve.back().extension_mm;
+    const double error = 100 * std::abs(extension / kRraReferenceMm - 1);
+    INFO(m.name << ": " << extension << " mm, error " << error << " % (ladder says " << m.error_percent << " %)");
+    CHECK(error == Approx(m.error_percent).margin(0.05));
+  }
+}
+
+TEST_CASE("the 3CA ladder's rod error holds on the thesis 3CA", "[fidelity]") {
+  // 3D Hex27 level 1 (the reference, ~15 min) at 137.9 kPa: 42.2 deg; at 90 deg: 293.8 kPa (README).
+  json tca = thesis_scene("tca_thesis.json");
+  tca.erase("mesh");
+  tca["model"] = {{"fidelity", "fast"}};
+  tca["load"]["output_count"] = 10;
+  const SceneConfig c = read_scene_config(tca);
+  const ReducedTcaResult r = run_reduced_tca(c.tca);
+  const ModelLevel& rod = fidelity_ladder("tca").levels.front();
+  REQUIRE(rod.reduced);
+  double at_137 = NAN;
+  for (std::size_t i = 0; i < r.pressure_kPa.size(); ++i)
+    if (std::abs(r.pressure_kPa[i] - 137.88) < 0.1) at_137 = r.bending_deg[i];
+  INFO("rod at 137.9 kPa: " << at_137 << " deg; 90 deg at " << *r.target_pressure_kPa << " kPa");
+  CHECK(100 * std::abs(at_137 / 42.2 - 1) == Approx(rod.error_percent).margin(0.5));
+  REQUIRE(r.target_pressure_kPa);
+  CHECK(*r.target_pressure_kPa == Approx(293.8).epsilon(0.02));
+}
