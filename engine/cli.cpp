@@ -9,6 +9,7 @@
 #include "engine/design/design_config.hpp"
 #include "engine/design/design_measures.hpp"
 #include "engine/optimiser/optimiser.hpp"
+#include "engine/fidelity_report.hpp"
 #include "engine/material_command.hpp"
 #include "engine/reduced_simulate.hpp"
 #include "engine/study/study_command.hpp"
@@ -161,20 +162,6 @@ void print_schema(const std::string& scene) {
   print_fields("scene \"" + scene + "\" config keys");
 }
 
-void print_fidelity_ladders() {
-  for (const std::string scene : {"rra", "tca", "spl"}) {
-    const fem::FidelityLadder& ladder = fem::fidelity_ladder(scene);
-    std::cout << "scene " << scene << " (errors against " << ladder.reference << "):\n";
-    for (const auto& m : ladder.levels)
-      std::cout << "  " << std::left << std::setw(48) << m.name << std::right << std::setw(9) << m.dofs << " dofs "
-                << std::setw(7) << m.seconds << " s  error " << std::setw(5) << m.error_percent << " %  (" << m.error_measure
-                << ")\n";
-  }
-  std::cout << "fidelity: fast = within " << fem::fidelity_target_percent("fast") << " %, balanced = "
-            << fem::fidelity_target_percent("balanced") << " %, accurate = " << fem::fidelity_target_percent("accurate")
-            << " %: the cheapest model that meets it\n";
-}
-
 }  // namespace
 
 int run_cli(int argc, char** argv) {
@@ -230,6 +217,8 @@ int run_cli(int argc, char** argv) {
   study->add_flag("--report-only", study_options.report_only, "write the reports from the results on disk");
   auto* fidelity = app.add_subcommand("fidelity", "the fidelity ladder: each scene's models with measured error and cost "
                                                   "(what model.fidelity / model.target_error_percent choose from)");
+  std::string fidelity_report;
+  fidelity->add_option("--report", fidelity_report, "also write an HTML page with a Pareto plot per scene");
   add_material_command(app);
 
   try {
@@ -247,6 +236,7 @@ int run_cli(int argc, char** argv) {
     if (*study) return run_study_command(study_options);
     if (*fidelity) {
       print_fidelity_ladders();
+      if (!fidelity_report.empty()) write_fidelity_report(fidelity_report);
       return 0;
     }
     if (*exp) return export_deck(scene_file, deck_path, deck_pressure_kPa, mesh_level);
