@@ -59,7 +59,7 @@ VolumeControlResult follow_volume(const EnergyProblem& problem, Vector& x, doubl
   VolumeControlResult out;
   if (previous) out.states.push_back(*previous);
   double step = initial_volume_step;
-  const double min_step = initial_volume_step / 256;
+  const double min_step = initial_volume_step / 64;  // six halvings: a stall costs at most ~6 × 20 iterations
   Vector best_x = x;
   double best_level = level;
   out.states.push_back({level, vp.volume(x), 0, true});
