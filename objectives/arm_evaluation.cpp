@@ -128,6 +128,9 @@ void judge_segment(SegmentMeasures& out, const std::vector<double>& chamber_stre
   const double p_ext = s.rra_extension_pressure_kPa;
   out.rra_extension_mm = fem::rod_rra_extension_mm(c.design.segments[n].actuator, fem::FibreLaw(*c.tube.law),
                                                    p_ext, cal.force_factor.at(p_ext));
+  // The rod cannot hold p_ext (a section past its fibres' Drucker limit: the RRA balloons
+  // below it): report the FEM's extension at the last pressure it reached, never NaN.
+  if (!std::isfinite(out.rra_extension_mm)) out.rra_extension_mm = out.rra_fem_extension_mm;
   double previous_u = 0, previous_p = 0;
   for (std::size_t i = 0; i < chamber_stretch.size(); ++i) {
     const double p = out.pressure_kPa[i];

@@ -61,6 +61,7 @@ struct SegmentMeasures {
   std::string rod_diagnosis;            // empty when the path completed
   double rra_fem_extension_mm = 0, rra_rod_extension_mm = 0, rra_pressure_kPa = 0;  // model-error evidence
   double rra_extension_mm = 0;  // the lone RRA at rra_extension_pressure_kPa: rod with the FEM-calibrated force
+                                // (an RRA that balloons below it: the FEM's extension at rra_pressure_kPa)
 };
 
 struct ArmMeasures {

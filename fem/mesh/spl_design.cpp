@@ -26,7 +26,7 @@ double SplDesign::total_length_mm() const { return connector_extent(0)[1]; }
 
 SplDesign read_spl_design(JsonReader& g) {
   SplDesign d;
-  d.taper_ratio = g.number("taper_ratio", 0.5, Range::open(0, 1),
+  d.taper_ratio = g.number("taper_ratio", 0.5, Range{0, 1, true, false},  // 1: no taper, every radius (r_b)_3
                            "t_r = (r_b)_3 / (r_t)_1, bottom radius of segment 3 over top radius of segment 1 (eq 6)");
   d.distal_bottom_radius_mm = g.number("distal_bottom_radius_mm", 9, Range::positive(),
                                        "(r_b)_3, bottom radius of the distal segment's RRAs (mm)");

@@ -1,5 +1,6 @@
 #include "fem/scenes/pressure_path.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -150,10 +151,11 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
       out.beyond_limit.push_back({vc.states[i].level * spec.max_pressure_kPa, vc.states[i].volume, 0.0,
                                   vc.states[i].tangent_positive_definite, vc.states[i].iterations, false});
     out.path.stats.newton_iterations += vc.newton_iterations;
+    // x is now the traced state of the largest pressure (at least the last one's): report that one.
+    out.reached_pressure_kPa = level * spec.max_pressure_kPa;
     if (vc.passed_peak) {
       out.outcome = PathOutcome::limit_point;
       out.estimated_limit_pressure_kPa = vc.peak_level * spec.max_pressure_kPa;
-      out.reached_pressure_kPa = level * spec.max_pressure_kPa;
       out.diagnosis = "limit point (ballooning) at " + fmt(out.estimated_limit_pressure_kPa) +
                       " kPa: chamber-volume control followed the path past the pressure maximum (" + vc.message +
                       ", the loaded volume growing from " + fmt(last.chamber_volume_mm3) + " to " +
@@ -176,6 +178,8 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
       if (c < 0.0 && last.pv_stiffness_kPa_per_mm3 > 0.0)
         out.estimated_limit_pressure_kPa = last.pressure_kPa - last.pv_stiffness_kPa_per_mm3 * last.pv_stiffness_kPa_per_mm3 / (2 * c);
     }
+    // Volume control may have climbed past the last pressure-controlled state: the peak is no lower.
+    out.estimated_limit_pressure_kPa = std::max(out.estimated_limit_pressure_kPa, out.reached_pressure_kPa);
     out.diagnosis = "limit point (ballooning): the pressure-volume curve flattens at " + fmt(last.pressure_kPa) +
                     " kPa (dp/dV fell to " + fmt(100 * ratio, 3) + " % of its initial value" +
                     (last.tangent_positive_definite ? "" : ", tangent no longer positive definite") +

@@ -108,9 +108,15 @@ RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress) {
     out.curve.push_back(curve_point(s, mesh, *elastic, xs, free_node, sign));
     if (progress) progress(out.curve.back());
   });
-  // A path that stopped early also reports the last state it reached.
-  if (out.path.outcome != PathOutcome::completed && !out.path.history.back().is_output)
-    out.curve.push_back(curve_point(out.path.history.back(), mesh, *elastic, x, free_node, sign));
+  // A path that stopped early also reports the last state it reached: x is the state of the
+  // largest pressure, which is past the last pressure-controlled one when volume control
+  // climbed further (its states carry no dp/dV: ≈ 0 there, by the pressure maximum).
+  if (out.path.outcome != PathOutcome::completed) {
+    PressureState last = out.path.history.back();
+    for (const PressureState& s : out.path.beyond_limit)
+      if (s.pressure_kPa > last.pressure_kPa) last = s;
+    if (!last.is_output) out.curve.push_back(curve_point(last, mesh, *elastic, x, free_node, sign));
+  }
   out.timings.solve_s = since(t_solve);
   out.timings.assembly_s = problem.assembly_seconds();
   out.timings.evaluations = problem.evaluations();
