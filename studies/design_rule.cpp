@@ -93,26 +93,22 @@ std::optional<double> curve_value_at(const json& record, const std::string& outp
 void rank_points(const StudySpec& spec, const std::vector<StudyPoint>& points, const std::map<std::string, json>& records,
                  CurveChoice& curve) {
   const std::string& output = spec.thesis.trend_of;
-  std::vector<std::pair<int, double>> ranked;
+  std::vector<std::pair<int, const json*>> usable;  // solved, completely or up to where the solver stopped
+  for (int i : curve.points) {
+    const auto it = records.find(points[i].key);
+    const std::string status = it == records.end() ? "" : it->second.value("status", std::string());
+    if (status == "ok" || status == "incomplete") usable.emplace_back(i, &it->second);
+  }
   double p_common = 1e300;
   bool curves = true;
-  for (int i : curve.points) {
-    const auto it = records.find(points[i].key);
-    if (it == records.end()) continue;
-    const json& r = it->second;
-    const std::string status = r.value("status", std::string());
-    if (status != "ok" && status != "incomplete") continue;
-    if (!(r.contains("curve") && r["curve"].contains(output))) curves = false;
-    if (const auto reached = output_of(r, "reached_pressure_kPa")) p_common = std::min(p_common, *reached);
+  for (const auto& [i, r] : usable) {
+    if (!(r->contains("curve") && (*r)["curve"].contains(output))) curves = false;
+    if (const auto reached = output_of(*r, "reached_pressure_kPa")) p_common = std::min(p_common, *reached);
   }
-  for (int i : curve.points) {
-    const auto it = records.find(points[i].key);
-    if (it == records.end()) continue;
-    const json& r = it->second;
-    const std::string status = r.value("status", std::string());
-    if (status != "ok" && status != "incomplete") continue;
-    const auto v = curves && p_common < 1e300 ? curve_value_at(r, output, p_common)
-                                              : solved_to_peak(r) ? output_of(r, output) : std::nullopt;
+  std::vector<std::pair<int, double>> ranked;
+  for (const auto& [i, r] : usable) {
+    const auto v = curves && p_common < 1e300 ? curve_value_at(*r, output, p_common)
+                                              : solved_to_peak(*r) ? output_of(*r, output) : std::nullopt;
     if (v) ranked.emplace_back(i, *v);
   }
   if (curves && p_common < 1e300) curve.order_pressure_kPa = p_common;

@@ -101,6 +101,16 @@ ModelRequest read_model(JsonReader& root, bool three_dimensional) {
   return r;
 }
 
+/// The mesh and model objects of a 3D scene (levels up to `max_level` fit this machine).
+void read_3d_discretisation(JsonReader& root, int& level, int& order, bool& allow_symmetry, ModelRequest& request,
+                            int max_level, const std::string& order_doc) {
+  auto mesh = root.object("mesh", "discretisation");
+  read_mesh(mesh, level, order, max_level, order_doc);
+  mesh.finish();
+  request = read_model(root, true);
+  allow_symmetry = request.allow_symmetry;
+}
+
 RraSceneSpec read_rra(JsonReader& root, ModelRequest& model_request) {
   RraSceneSpec spec;
   auto geometry = root.object("geometry", "RRA geometry (physical or normalised sizes)");
@@ -154,14 +164,8 @@ TcaSceneSpec read_tca(JsonReader& root, ModelRequest& model_request) {
   read_actuator_materials(materials, spec.tube_material, spec.ring_material, spec.sheath_material);
   materials.finish();
 
-  auto mesh = root.object("mesh", "discretisation");
-  read_mesh(mesh, spec.mesh_level, spec.element_order, 3,
-            "1: trilinear Hex8/P0 (mean dilatation; locks in bending at coarse levels); 2: triquadratic Hex27/P1");
-  mesh.finish();
-
-  const ModelRequest request = read_model(root, true);
-  spec.allow_symmetry = request.allow_symmetry;
-  model_request = request;
+  read_3d_discretisation(root, spec.mesh_level, spec.element_order, spec.allow_symmetry, model_request, 3,
+                         "1: trilinear Hex8/P0 (mean dilatation; locks in bending at coarse levels); 2: triquadratic Hex27/P1");
 
   auto load = root.object("load", "loading");
   const auto pressures = read_chamber_pressures(load, 3, "1, 2, 3");
@@ -199,13 +203,8 @@ SplSceneSpec read_spl(JsonReader& root, ModelRequest& model_request) {
   spec.connector_material = read_material(materials, "connector", "digital_abs");
   materials.finish();
 
-  auto mesh = root.object("mesh", "discretisation");
-  read_mesh(mesh, spec.mesh_level, spec.element_order, 2,
-            "1: trilinear Hex8/P0 (a quick preview: locks in bending); 2: triquadratic Hex27/P1");
-  mesh.finish();
-  const ModelRequest request = read_model(root, true);
-  spec.allow_symmetry = request.allow_symmetry;
-  model_request = request;
+  read_3d_discretisation(root, spec.mesh_level, spec.element_order, spec.allow_symmetry, model_request, 2,
+                         "1: trilinear Hex8/P0 (a quick preview: locks in bending); 2: triquadratic Hex27/P1");
 
   auto load = root.object("load", "loading");
   const auto pressures = read_chamber_pressures(load, 9, "1–9; segment n holds 3n−2 … 3n");

@@ -1,17 +1,12 @@
 #include "fem/solver/volume_control.hpp"
 
 #include <cmath>
-#include <sstream>
+#include "fem/core/number_text.hpp"
 
 namespace softarm::fem {
 namespace {
 
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(5);
-  s << v;
-  return s.str();
-}
+std::string fmt(double v) { return number_text(v, 5); }
 
 /// Newton on (x, λ) for V(x) = target; x and level are updated only on convergence.
 bool solve_constrained(const EnergyProblem& problem, Vector& x, double& level, LinearSolver& solver,
