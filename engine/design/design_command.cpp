@@ -153,6 +153,12 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
                "is defined at RRA level "
             << config.check.rra_mesh_level << "; durability is a ratio to the thesis RRA at the same level)\n";
 
+  std::cout << "model errors (fidelity ladder, softarm fidelity):";
+  for (const auto& e : model_errors_json(config.check.rra_mesh_level))
+    std::cout << " " << e["what"].get<std::string>() << " by the " << e["model"].get<std::string>() << ": "
+              << e["error_percent"].get<double>() << " % (" << e["measured_on"].get<std::string>() << ");";
+  std::cout << "\n";
+
   run.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   write_design_outputs(run);
   std::cout << "total " << fixed(run.seconds, 1) << " s; written: " << config.output_directory

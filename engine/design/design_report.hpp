@@ -1,4 +1,5 @@
 #pragma once
+#include <nlohmann/json.hpp>
 // What `softarm design` writes: report.html (self-contained, SVG plots: the
 // pressure–bending curves of the optimum and of the thesis design, the
 // constraint margins, the convergence history, the payload pose), summary.json
@@ -32,5 +33,9 @@ struct DesignRun {
 };
 
 void write_design_outputs(const DesignRun& run);
+
+/// The measured errors of the models the search used (the fidelity ladder, fem/scenes/fidelity.hpp):
+/// the 3CA bending by the rod, and the RRA's FEM level that supplies the local peaks.
+nlohmann::json model_errors_json(int rra_mesh_level);
 
 }  // namespace softarm::engine
