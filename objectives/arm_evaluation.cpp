@@ -1,5 +1,7 @@
 #include "objectives/arm_evaluation.hpp"
 
+#include "fem/materials/burst_criteria.hpp"
+
 #include "objectives/payload_capacity.hpp"
 
 #include <algorithm>
@@ -74,19 +76,10 @@ fem::RraCalibration segment_rra_fem(const ArmCandidate& c, const EvaluationSetti
   return fem::calibrate_rra(spec);
 }
 
-// Burst utilisation of the local peaks: max over criteria (a) and (b) of measure / allowable.
+// Burst utilisation of the local peaks: spec §4 criteria (a), (b).
 std::pair<double, std::string> utilisation(const fem::RraCalibration::Peaks& peaks, const fem::Material& m, double sf) {
-  double u = 0;
-  std::string by;
-  if (std::isfinite(m.elongation_at_break)) {
-    const double v = peaks.stretch / ((1 + m.elongation_at_break) / sf);
-    if (v > u) u = v, by = "stretch";
-  }
-  if (std::isfinite(m.tensile_strength_MPa)) {
-    const double v = peaks.stress_MPa / (m.tensile_strength_MPa / sf);
-    if (v > u) u = v, by = "stress";
-  }
-  return {u, by};
+  const fem::BurstUtilisation u = fem::burst_utilisation(m, peaks.stress_MPa, peaks.stretch, sf);
+  return {u.value, u.criterion};
 }
 
 // Phase 1: the segment's bending path by the rod (records the chambers' axial stretch).

@@ -11,6 +11,15 @@ namespace softarm::studies {
 namespace {
 #ifdef SOFTARM_WITH_MPI
 constexpr int kResultTag = 1, kDoneTag = 2;
+
+/// Rank 0's contents of a resizable container of `type` elements, given to every rank.
+template <class Container>
+void broadcast_from_root(Container& values, MPI_Datatype type) {
+  int n = static_cast<int>(values.size());
+  MPI_Bcast(&n, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  values.resize(n);
+  if (n) MPI_Bcast(values.data(), n, type, 0, MPI_COMM_WORLD);
+}
 #endif
 
 /// Launched by mpirun (Open MPI, or a PMI-based launcher)?
@@ -51,22 +60,14 @@ Cluster::~Cluster() {
 
 std::vector<int> Cluster::broadcast(std::vector<int> values) const {
 #ifdef SOFTARM_WITH_MPI
-  if (!initialised_) return values;
-  int n = static_cast<int>(values.size());
-  MPI_Bcast(&n, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  values.resize(n);
-  if (n) MPI_Bcast(values.data(), n, MPI_INT, 0, MPI_COMM_WORLD);
+  if (initialised_) broadcast_from_root(values, MPI_INT);
 #endif
   return values;
 }
 
 std::string Cluster::broadcast(std::string text) const {
 #ifdef SOFTARM_WITH_MPI
-  if (!initialised_) return text;
-  int n = static_cast<int>(text.size());
-  MPI_Bcast(&n, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  text.resize(n);
-  if (n) MPI_Bcast(text.data(), n, MPI_CHAR, 0, MPI_COMM_WORLD);
+  if (initialised_) broadcast_from_root(text, MPI_CHAR);
 #endif
   return text;
 }

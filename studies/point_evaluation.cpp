@@ -5,6 +5,7 @@
 #include <map>
 
 #include "fem/core/input_error.hpp"
+#include "fem/materials/burst_criteria.hpp"
 #include "fem/reduced/reduced_scenes.hpp"
 #include "fem/scenes/scene_config.hpp"
 
@@ -19,10 +20,7 @@ json finite_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr
 
 /// Spec §4 (a), (b): the larger of the stress and stretch ratios to their allowables.
 double criteria_ab(const fem::Material& m, double stress_MPa, double stretch, double safety_factor) {
-  double u = 0;
-  if (std::isfinite(m.tensile_strength_MPa)) u = std::max(u, stress_MPa / (m.tensile_strength_MPa / safety_factor));
-  if (std::isfinite(m.elongation_at_break)) u = std::max(u, stretch / ((1 + m.elongation_at_break) / safety_factor));
-  return u;
+  return fem::burst_utilisation(m, stress_MPa, stretch, safety_factor).value;
 }
 
 /// The deformed outline of an axisymmetric mesh: element edges (corner to corner)
@@ -125,7 +123,7 @@ json evaluate_tca_rod(const StudySpec& spec, const fem::TcaSceneSpec& scene) {
   // The centreline and the envelope's half-width (RRA axis distance + outer radius + sheath).
   json shape = {{"kind", "rod_centreline"}, {"x_mm", json::array()}, {"z_mm", json::array()},
                 {"half_width_mm", json::array()}};
-  const auto s_ref = fem::reduced_tca_rod(scene, spec.rod_nodes).arc_length();
+  const auto& s_ref = r.arc_length_mm;
   const double length = scene.design.actuator.length_mm;
   for (std::size_t i = 0; i < st.x.size(); ++i) {
     const double z_ref = length - s_ref[i];  // the clamp is the top face (z = l)

@@ -187,8 +187,7 @@ StudySpec read_study(const json& document, const std::filesystem::path& base_dir
     try {
       return fem::read_scene_config(s.scene);
     } catch (const InputError& e) {
-      const std::string prefix = InputError(e.field(), "").what();  // "input error: 'field': "
-      throw InputError("scene." + e.field(), std::string(e.what()).substr(prefix.size()));
+      throw InputError("scene." + e.field(), e.message());
     }
   }();
   if (base.scene == "spl")

@@ -42,8 +42,7 @@ std::vector<studies::StudySpec> read_all(const std::vector<std::string>& files) 
       specs.push_back(studies::load_study(f));
       studies::study_points(specs.back());  // a sweep value the scene cannot take (unknown section, taper ratio > 1)
     } catch (const fem::InputError& e) {
-      const std::string prefix = fem::InputError(e.field(), "").what();  // "input error: 'field': "
-      throw fem::InputError(e.field(), std::string(e.what()).substr(prefix.size()) + " (in " + f + ")");
+      throw fem::InputError(e.field(), e.message() + " (in " + f + ")");
     }
     for (std::size_t i = 0; i + 1 < specs.size(); ++i)
       if (specs[i].name == specs.back().name)

@@ -11,11 +11,13 @@ class InputError : public std::runtime_error {
  public:
   InputError(std::string field, const std::string& message)
       : std::runtime_error("input error: " + (field.empty() ? std::string() : "'" + field + "': ") + message),
-        field_(std::move(field)) {}
+        field_(std::move(field)), message_(message) {}
   const std::string& field() const { return field_; }
+  /// The message without the "input error: 'field': " prefix (to re-raise it under another field).
+  const std::string& message() const { return message_; }
 
  private:
-  std::string field_;
+  std::string field_, message_;
 };
 
 }  // namespace softarm::fem

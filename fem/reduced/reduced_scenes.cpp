@@ -27,6 +27,7 @@ ReducedRraResult run_reduced_rra(const RraSceneSpec& spec) {
   return out;
 }
 
+namespace {
 ArmRod reduced_tca_rod(const TcaSceneSpec& spec, int nodes) {
   ArmRodSpec rod;
   RodPiece piece;
@@ -38,6 +39,7 @@ ArmRod reduced_tca_rod(const TcaSceneSpec& spec, int nodes) {
   rod.nodes_per_segment = nodes;
   return ArmRod(rod);
 }
+}  // namespace
 
 ReducedTcaResult run_reduced_tca(const TcaSceneSpec& spec, int nodes) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -66,6 +68,7 @@ ReducedTcaResult run_reduced_tca(const TcaSceneSpec& spec, int nodes) {
   out.extremes = rod.extremes(out.final_state, load, 0);
   out.mass_kg = rod.mass_kg();
   out.nodes = rod.node_count();
+  out.arc_length_mm = rod.arc_length();
   out.seconds = since(t0);
   return out;
 }

@@ -27,12 +27,11 @@ struct ReducedTcaResult {
   std::optional<double> target_pressure_kPa;      // where the bending reaches spec.target_bending_deg
   RodState final_state;                           // converged=false: the path stopped (diagnosis inside)
   PieceExtremes extremes;                         // fibre extremes at the final state
+  std::vector<double> arc_length_mm;             // reference arc length per node, from the clamp
   double mass_kg = 0, seconds = 0;
   int nodes = 0;
 };
 /// `nodes`: rod nodes along the 3CA (17 by default: converged to 0.1 % on the thesis 3CA, README).
 ReducedTcaResult run_reduced_tca(const TcaSceneSpec& spec, int nodes = 17);
-/// The rod of a tca scene (for shapes: arc length, node count).
-ArmRod reduced_tca_rod(const TcaSceneSpec& spec, int nodes = 17);
 
 }  // namespace softarm::fem

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "fem/core/number_text.hpp"
 #include "fem/solver/volume_control.hpp"
 
 namespace softarm::fem {
@@ -39,12 +40,7 @@ double pv_stiffness(const EnergyProblem& problem, const LoadedVolume& chamber, L
   return 1e3 / compliance_mm3_per_MPa;  // MPa → kPa
 }
 
-std::string fmt(double v, int precision = 4) {
-  std::ostringstream s;
-  s.precision(precision);
-  s << v;
-  return s.str();
-}
+std::string fmt(double v, int precision = 4) { return number_text(v, precision); }
 }  // namespace
 
 PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::vector<const ChamberPressureForm*>& chambers,
