@@ -1,7 +1,9 @@
 // softarm vs CalculiX (ccx 2.20, SPOOLES) wall time on the same 3D actuator
 // meshes: a short three-chambered actuator (3CA, half model, chambers 2 and 3
-// pressurised) and a lone RRA (half model), Hex27/H2P1 in softarm, C3D20R in
-// ccx (the export of fem/scenes/tca_export.hpp), neo-Hookean silicone with
+// pressurised) and a lone RRA (half model), Hex27/H2P1 or Hex20/H2sP1
+// (--elements) in softarm, C3D20R in ccx (the export of
+// fem/scenes/tca_export.hpp; for Hex20 it is the very same mesh, node for node,
+// so the unknowns are equal), neo-Hookean silicone with
 // Dragon Skin 30's initial moduli and digital-ABS rings, one pressure.
 //
 // Matched work: both engines take the same fixed load increments (--increments,
@@ -22,6 +24,7 @@
 //                     [--pressure-kPa 15] [--repeat 3] [--threads 1]
 //                     [--increments 4] [--loose-tol 5e-3]
 //                     [--variants strict,loose,ccx,ccx-tight]   (ratio: time / the first variant's)
+//                     [--elements 27,20]   (softarm's Hex27 and/or Hex20; ccx runs once per mesh)
 // Medians over --repeat runs are printed (this machine is shared and noisy).
 // "dofs": 3 × nodes, constrained ones included (softarm: Hex27 nodes; ccx: the
 // C3D20 nodes). softarm's time is setup + solve (not meshing; the 3CA's includes
@@ -96,6 +99,7 @@ struct Problem {
   double length_mm = 32;
   int level = 1;
   double pressure_kPa = 15;
+  bool serendipity = false;  // softarm's Hex20 instead of Hex27 (ccx's deck is the same)
 };
 
 TcaSceneSpec tca_spec(const Problem& p, int increments, const NewtonSettings& newton) {
@@ -104,6 +108,7 @@ TcaSceneSpec tca_spec(const Problem& p, int increments, const NewtonSettings& ne
   spec.tube_material = spec.sheath_material = silicone();
   spec.ring_material = builtin_material("digital_abs", "bench");
   spec.mesh_level = p.level;
+  spec.serendipity = p.serendipity;
   spec.chamber_pressure_kPa = {0, p.pressure_kPa, p.pressure_kPa};
   spec.output_pressures_kPa = {p.pressure_kPa};
   spec.steps.initial_increment = spec.steps.max_increment = 1.0 / increments;
@@ -111,7 +116,13 @@ TcaSceneSpec tca_spec(const Problem& p, int increments, const NewtonSettings& ne
   return spec;
 }
 
-Mesh rra_mesh_of(const Problem& p) { return mesh_rra_3d(short_rra(p.length_mm), {p.level, 2, true, 0}); }
+Mesh rra_mesh_of(const Problem& p) {
+  SolidMeshOptions options;
+  options.level = p.level;
+  options.half = true;
+  options.serendipity = p.serendipity;
+  return mesh_rra_3d(short_rra(p.length_mm), options);
+}
 
 Answer softarm_run(const Problem& p, int increments, const NewtonSettings& newton) {
   Answer a;
@@ -228,7 +239,7 @@ std::vector<double> parse_list(const char* s) {
 
 int main(int argc, char** argv) {
   std::string scene = "both";
-  std::vector<double> levels{1, 2}, lengths{32};
+  std::vector<double> levels{1, 2}, lengths{32}, elements{27};
   double pressure = 15, loose = 5e-3;
   int repeat = 3, threads = 1, increments = 4;
   std::vector<std::string> which{"strict", "loose", "ccx"};
@@ -243,6 +254,7 @@ int main(int argc, char** argv) {
     };
     if (a == "--scene") scene = next();
     else if (a == "--levels") levels = parse_list(next());
+    else if (a == "--elements") elements = parse_list(next());
     else if (a == "--lengths") lengths = parse_list(next());
     else if (a == "--pressure-kPa") pressure = std::stod(next());
     else if (a == "--repeat") repeat = std::stoi(next());
@@ -263,9 +275,9 @@ int main(int argc, char** argv) {
   NewtonSettings strict, relaxed;
   relaxed.residual_tolerance = loose;
   relaxed.update_tolerance = 1e-2;
-  std::printf("softarm (Hex27 H2/P1) vs ccx (C3D20R), %g kPa, %d fixed increments, %d thread(s), median of %d\n",
+  std::printf("softarm (Hex27 H2/P1 or Hex20 H2s/P1) vs ccx (C3D20R), %g kPa, %d fixed increments, %d thread(s), median of %d\n",
               pressure, increments, threads, repeat);
-  std::printf("%-5s %6s %5s %8s | %-22s %5s %5s %8s | %-10s %12s %12s %12s\n", "scene", "l_mm", "level", "dofs",
+  std::printf("%-5s %6s %5s %8s | %-26s %5s %5s %8s | %-10s %12s %12s %12s\n", "scene", "l_mm", "level", "dofs",
               "engine", "incr", "iters", "time_s", "ratio", "u_x_mm", "u_y_mm", "u_z_mm");
   const std::vector<std::string> scenes = scene == "both" ? std::vector<std::string>{"rra", "tca"} : std::vector<std::string>{scene};
   for (const auto& s : scenes)
@@ -273,28 +285,38 @@ int main(int argc, char** argv) {
       for (double lv : levels) {
         const Problem p{s, l, static_cast<int>(lv), pressure};
         struct Variant {
-          std::string name;
+          std::string name, kind;
+          bool serendipity = false;
           std::vector<Answer> runs;
         };
         std::vector<Variant> variants;
-        for (const auto& v : which) {
-          if (v == "strict") variants.push_back({"softarm tol 1e-8", {}});
-          else if (v == "loose") variants.push_back({"softarm tol " + std::to_string(loose).substr(0, 6), {}});
-          else if (v == "ccx") variants.push_back({"ccx default", {}});
-          else if (v == "ccx-tight") variants.push_back({"ccx R_n 1e-6", {}});
-          else {
-            std::fprintf(stderr, "unknown variant %s\n", v.c_str());
-            return 2;
+        for (const auto& v : which)
+          for (double e : elements) {
+            const bool h20 = e == 20, first = e == elements.front();
+            if (e != 20 && e != 27) {
+              std::fprintf(stderr, "--elements takes 20 and/or 27\n");
+              return 2;
+            }
+            const std::string tag = h20 ? " H20" : " H27";
+            if (v == "strict") variants.push_back({"softarm tol 1e-8" + tag, v, h20, {}});
+            else if (v == "loose") variants.push_back({"softarm tol " + std::to_string(loose).substr(0, 6) + tag, v, h20, {}});
+            else if (v == "ccx" && first) variants.push_back({"ccx default", v, false, {}});
+            else if (v == "ccx-tight" && first) variants.push_back({"ccx R_n 1e-6", v, false, {}});
+            else if (v != "ccx" && v != "ccx-tight") {
+              std::fprintf(stderr, "unknown variant %s\n", v.c_str());
+              return 2;
+            }
           }
-        }
         for (int r = 0; r < repeat; ++r)
           for (std::size_t k = 0; k < variants.size(); ++k) {
-            const std::string& v = which[k];
-            variants[k].runs.push_back(v == "strict"  ? softarm_run(p, increments, strict)
-                                       : v == "loose" ? softarm_run(p, increments, relaxed)
+            const std::string& v = variants[k].kind;
+            Problem pk = p;
+            pk.serendipity = variants[k].serendipity;
+            variants[k].runs.push_back(v == "strict"  ? softarm_run(pk, increments, strict)
+                                       : v == "loose" ? softarm_run(pk, increments, relaxed)
                                                       : ccx_run(p, increments, threads, v == "ccx-tight"));
             const Answer& a = variants[k].runs.back();  // each run as it ends (long runs)
-            std::printf("  run %d %-22s %5d iterations %8.2f s  u = (%.5f, %.5f, %.5f) mm%s\n", r + 1,
+            std::printf("  run %d %-26s %5d iterations %8.2f s  u = (%.5f, %.5f, %.5f) mm%s\n", r + 1,
                         variants[k].name.c_str(), a.iterations, a.seconds, a.u.x(), a.u.y(), a.u.z(),
                         a.ok ? "" : "  (FAILED)");
             std::fflush(stdout);
@@ -307,7 +329,7 @@ int main(int argc, char** argv) {
         }
         for (std::size_t k = 0; k < variants.size(); ++k) {
           const Answer& a = variants[k].runs.back();
-          std::printf("%-5s %6.0f %5d %8d | %-22s %5d %5d %8.2f | %-10.2f %12.5f %12.5f %12.5f%s\n", s.c_str(), l,
+          std::printf("%-5s %6.0f %5d %8d | %-26s %5d %5d %8.2f | %-10.2f %12.5f %12.5f %12.5f%s\n", s.c_str(), l,
                       p.level, a.dofs, variants[k].name.c_str(), a.increments, a.iterations, medians[k],
                       medians[k] / medians[0], a.u.x(), a.u.y(), a.u.z(), a.ok ? "" : "  (FAILED)");
         }

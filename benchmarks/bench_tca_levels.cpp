@@ -5,7 +5,8 @@
 // peak memory, the pressure reaching the target bending angle and the bending
 // angle and tip position at the peak pressure.
 //
-// Usage: bench_tca_levels [config] [--runs 1:2,1:1,2:1 (order:level)] [--repeat N] [--threads T]
+// Usage: bench_tca_levels [config] [--runs 1:2,2:1,20:1 (element:level; element 1 = Hex8,
+//        2 = Hex27, 20 = Hex20)] [--repeat N] [--threads T]
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -29,8 +30,9 @@ double peak_memory_MiB() {
   return u.ru_maxrss / 1024.0;
 }
 
-void run_one(fem::TcaSceneSpec spec, int order, int level, int repeat) {
-  spec.element_order = order;
+void run_one(fem::TcaSceneSpec spec, int element, int level, int repeat) {
+  spec.element_order = element == 1 ? 1 : 2;
+  spec.serendipity = element == 20;
   spec.mesh_level = level;
   std::vector<double> totals;
   fem::TcaResult r;
@@ -41,7 +43,7 @@ void run_one(fem::TcaSceneSpec spec, int order, int level, int repeat) {
   std::sort(totals.begin(), totals.end());
   const auto& last = r.curve.back();
   std::printf("%5s %5d %-5s %8d %5d %6d %6d %9.2f %9.2f %9.2f %8.0f %10s %9.3f %9.2f %8.2f %8.2f  %s\n",
-              order == 2 ? "Hex27" : "Hex8", level, r.model.half ? "half" : "full", r.dofs, r.path.path.stats.steps,
+              element == 1 ? "Hex8" : element == 20 ? "Hex20" : "Hex27", level, r.model.half ? "half" : "full", r.dofs, r.path.path.stats.steps,
               r.path.path.stats.newton_iterations, r.path.factorizations, r.timings.assembly_s, r.timings.factorize_s,
               totals[totals.size() / 2], peak_memory_MiB(),
               r.target_pressure_kPa ? std::to_string(*r.target_pressure_kPa).substr(0, 7).c_str() : "-",
@@ -73,10 +75,10 @@ int main(int argc, char** argv) {
   std::stringstream list(runs);
   std::string item;
   while (std::getline(list, item, ',')) {
-    const int order = std::atoi(item.c_str()), level = std::atoi(item.c_str() + item.find(':') + 1);
+    const int element = std::atoi(item.c_str()), level = std::atoi(item.c_str() + item.find(':') + 1);
     const pid_t child = fork();
     if (child == 0) {
-      run_one(scene.tca, order, level, repeat);
+      run_one(scene.tca, element, level, repeat);
       std::_Exit(0);
     }
     int status = 0;

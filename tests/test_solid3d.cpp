@@ -1,7 +1,8 @@
 // The 3D (hexahedral) core: element and pressure-load derivatives against
 // central finite differences, the exact volume of a box cavity, the patch test
 // under a non-symmetric homogeneous deformation, and nearly incompressible
-// Ogden uniaxial tension against the closed form; Hex8 (H1/P0) and Hex27 (H2/P1).
+// Ogden uniaxial tension against the closed form; Hex8 (H1/P0), Hex20 (serendipity,
+// H2s/P1) and Hex27 (H2/P1).
 //
 // Finite-difference tolerance 1e-6, as in test_forms.cpp: with coordinates
 // O(1 mm), moduli O(0.1–3000 MPa) and h = 1e-6 mm, the truncation error is
@@ -14,8 +15,11 @@
 #include <map>
 
 #include "fem/forms/elastic_form.hpp"
+#include "fem/elements/hexahedron.hpp"
+#include "fem/elements/serendipity_quad.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
 #include "fem/mesh/quadratic_mesh.hpp"
+#include "fem/mesh/serendipity_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/load_stepper.hpp"
 #include "support/form_checks.hpp"
@@ -27,9 +31,17 @@ using namespace softarm::fem;
 
 namespace {
 
-Mesh box(const Eigen::Vector3d& hi, int nx, int ny, int nz, double distortion, int order) {
-  const Mesh linear = box_mesh(Eigen::Vector3d::Zero(), hi, nx, ny, nz, distortion);
-  return order == 1 ? linear : to_quadratic_3d(linear);
+constexpr int kHexKinds[3] = {8, 20, 27};  // nodes per element
+
+/// A Hex8 mesh as it is, or promoted to Hex27 or Hex20 (`nodes`).
+Mesh promoted(const Mesh& linear, int nodes) {
+  if (nodes == 8) return linear;
+  const Mesh hex27 = to_quadratic_3d(linear);
+  return nodes == 27 ? hex27 : serendipity_from_triquadratic(hex27);
+}
+
+Mesh box(const Eigen::Vector3d& hi, int nx, int ny, int nz, double distortion, int nodes) {
+  return promoted(box_mesh(Eigen::Vector3d::Zero(), hi, nx, ny, nz, distortion), nodes);
 }
 
 /// The boundary faces of a Hex8 mesh as a chamber whose cavity is the meshed body
@@ -64,18 +76,18 @@ Vector solve(const EnergyProblem& problem, const std::vector<double>& levels, co
 }  // namespace
 
 TEST_CASE("3D elastic form: gradient and Hessian match finite differences", "[solid3d]") {
-  for (int order : {1, 2})
+  for (int nodes : kHexKinds)
     for (const auto& c : test::form_cases()) {
       // Two elements along each axis of 1 mm: every node couples across element faces.
-      const Mesh mesh = order == 1 ? box({2, 2, 2}, 2, 2, 2, 1.0, 1) : box({2, 1, 1}, 2, 1, 1, 1.0, 2);
+      const Mesh mesh = nodes == 8 ? box({2, 2, 2}, 2, 2, 2, 1.0, 8) : box({2, 1, 1}, 2, 1, 1, 1.0, nodes);
       EnergyProblem problem(flattened_positions(mesh), DirichletConstraints{});
       problem.add_form(make_elastic_form(mesh, {c.material}, c.treatment));
       problem.finalize();
       // A large, non-homogeneous deformation: ±0.2 mm on 1 mm elements (±0.1 mm for
-      // Hex27, whose mid-edge nodes sit 0.5 mm from the corners).
-      const Vector x = test::perturbed(problem.reference_positions(), order == 1 ? 0.2 : 0.1);
+      // the quadratic elements, whose mid-edge nodes sit 0.5 mm from the corners).
+      const Vector x = test::perturbed(problem.reference_positions(), nodes == 8 ? 0.2 : 0.1);
       const auto err = test::finite_difference_errors(problem, x, 1e-6);
-      INFO("Hex" << (order == 1 ? 8 : 27) << ", " << c.name << ": gradient error " << err.gradient
+      INFO("Hex" << nodes << ", " << c.name << ": gradient error " << err.gradient
                  << ", Hessian error " << err.hessian);
       CHECK(err.gradient < 1e-6);
       CHECK(err.hessian < 1e-6);
@@ -83,12 +95,12 @@ TEST_CASE("3D elastic form: gradient and Hessian match finite differences", "[so
 }
 
 TEST_CASE("3D chamber pressure form: exact box volume, gradient and load stiffness", "[solid3d]") {
-  for (int order : {1, 2}) {
-    Mesh mesh = box_mesh(Eigen::Vector3d::Zero(), Eigen::Vector3d(2, 3, 4), 2, 2, 2, 1.0);
-    mesh.chambers.push_back(boundary_chamber(mesh));
-    if (order == 2) mesh = to_quadratic_3d(mesh);
+  for (int nodes : kHexKinds) {
+    Mesh linear = box_mesh(Eigen::Vector3d::Zero(), Eigen::Vector3d(2, 3, 4), 2, 2, 2, 1.0);
+    linear.chambers.push_back(boundary_chamber(linear));
+    const Mesh mesh = promoted(linear, nodes);
     const test::PressureOnly pressure(mesh, 0.3);
-    // The facets are bilinear (or biquadratic reproducing bilinear) patches of the
+    // The facets are bilinear (or quadratic reproducing bilinear) patches of the
     // planar box faces (distortion moves interior nodes only): V = 2·3·4 to round-off.
     CHECK(pressure.chamber->volume(pressure.problem->reference_positions()) == Approx(24.0).epsilon(1e-14));
     // A homogeneous deformation maps the box to a parallelepiped of volume det F0 · 24.
@@ -97,7 +109,7 @@ TEST_CASE("3D chamber pressure form: exact box volume, gradient and load stiffne
     Vector y(3 * mesh.num_nodes());
     for (int n = 0; n < mesh.num_nodes(); ++n) y.segment<3>(3 * n) = F0 * mesh.X.row(n).transpose();
     CHECK(pressure.chamber->volume(y) == Approx(24.0 * F0.determinant()).epsilon(1e-13));
-    pressure.check_derivatives(0.3, order == 1 ? "4-node facets" : "9-node facets");
+    pressure.check_derivatives(0.3, std::to_string(nodes == 8 ? 4 : nodes == 20 ? 8 : 9) + "-node facets");
   }
 }
 
@@ -105,12 +117,14 @@ TEST_CASE("3D patch test: a distorted box reproduces a non-symmetric homogeneous
   // x = F0 X with shear (F0 non-symmetric) is homogeneous, hence in equilibrium with
   // no body force. With every boundary node prescribed, interior nodes must land on
   // it to round-off: the trilinear geometry makes ∂N/∂X·det(∂X/∂ξ) polynomial, of a
-  // degree the 2×2×2 (Hex8) and 3×3×3 (Hex27) rules integrate exactly, and J is
+  // degree the 2×2×2 (Hex8) and 3×3×3 (Hex20, Hex27) rules integrate exactly (the
+  // serendipity space holds every trilinear function, ξηζ included), and J is
   // constant, so the projected dilatation equals it.
   Eigen::Matrix3d F0;
   F0 << 1.2, 0.3, 0.1, -0.1, 0.9, 0.2, 0.05, 0.15, 1.1;
-  for (int order : {1, 2}) {
-    const Mesh mesh = box({2, 3, 4}, order == 1 ? 3 : 2, order == 1 ? 3 : 2, order == 1 ? 3 : 2, 1.0, order);
+  for (int nodes : kHexKinds) {
+    const int n = nodes == 8 ? 3 : 2;
+    const Mesh mesh = box({2, 3, 4}, n, n, n, 1.0, nodes);
     DirichletConstraints c;
     for (int n : mesh.node_sets.at("boundary")) {
       const Eigen::Vector3d u = (F0 - Eigen::Matrix3d::Identity()) * mesh.X.row(n).transpose();
@@ -123,8 +137,10 @@ TEST_CASE("3D patch test: a distorted box reproduces a non-symmetric homogeneous
     double max_error = 0.0;
     for (int n = 0; n < mesh.num_nodes(); ++n)
       max_error = std::max(max_error, (x.segment<3>(3 * n) - F0 * mesh.X.row(n).transpose()).cwiseAbs().maxCoeff());
-    INFO("Hex" << (order == 1 ? 8 : 27) << ": max nodal error " << max_error << " mm");
-    CHECK(max_error < 1e-9);
+    // Newton stops at its residual tolerance, which leaves nodal errors of ~1e-9 mm
+    // (Hex20: 2.5e-9); an element that fails the patch test is off by > 1e-4 mm.
+    INFO("Hex" << nodes << ": max nodal error " << max_error << " mm");
+    CHECK(max_error < 1e-8);
   }
 }
 
@@ -136,8 +152,8 @@ TEST_CASE("3D uniaxial tension of nearly incompressible Ogden matches the incomp
   // 1 × 1 × 2 mm bar: the solution is homogeneous, which the patch test covers.
   const std::vector<double> mu{1.1806, 0.8743, -1.9396}, alpha{1.0698, -1.2370, 0.1347};
   const double kappa = 1e4 * (mu[0] + mu[1] + mu[2]), stretch = 1.8;
-  for (int order : {1, 2}) {
-    const Mesh mesh = order == 1 ? box({1, 1, 2}, 2, 2, 4, 0.5, 1) : box({1, 1, 2}, 1, 1, 2, 0.5, 2);
+  for (int nodes : kHexKinds) {
+    const Mesh mesh = nodes == 8 ? box({1, 1, 2}, 2, 2, 4, 0.5, 8) : box({1, 1, 2}, 1, 1, 2, 0.5, nodes);
     DirichletConstraints c;
     for (int n : mesh.node_sets.at("x0")) c.fix(3 * n);
     for (int n : mesh.node_sets.at("y0")) c.fix(3 * n + 1);
@@ -160,7 +176,7 @@ TEST_CASE("3D uniaxial tension of nearly incompressible Ogden matches the incomp
       double exact = 0.0;
       for (int i = 0; i < 3; ++i)
         exact += 2 * mu[i] / alpha[i] * (std::pow(lambda, alpha[i] - 1) - std::pow(lambda, -alpha[i] / 2 - 1));
-      INFO("Hex" << (order == 1 ? 8 : 27) << ", stretch " << lambda << ": FEM nominal stress " << force
+      INFO("Hex" << nodes << ", stretch " << lambda << ": FEM nominal stress " << force
                  << " MPa (1 mm² section), closed form " << exact);
       CHECK(force == Approx(exact).epsilon(2e-3));
       const int corner = mesh.node_sets.at("x1").back();  // on x = 1: lateral stretch λ^(−1/2)
@@ -241,4 +257,43 @@ TEST_CASE("3D tube under internal pressure agrees with the axisymmetric model", 
   INFO("differences " << differences[0] << ", " << differences[1] << ": observed order " << order);
   CHECK(order > 3.0);
   CHECK(differences[1] < 1e-4);
+}
+
+TEST_CASE("Hex20 and Quad8 shape functions: Kronecker property, partition of unity, exact gradients", "[solid3d]") {
+  // The serendipity functions are 1 at their own node and 0 at the 19 others, sum
+  // to 1 with gradients summing to 0 anywhere, and their gradients match central
+  // differences (quadratic per direction: the difference is exact to round-off).
+  Eigen::Matrix<double, 20, 3> dN;
+  double N[20];
+  for (int a = 0; a < 20; ++a) {
+    const Eigen::Vector3d node(hex::Hex27::kReference[a][0], hex::Hex27::kReference[a][1], hex::Hex27::kReference[a][2]);
+    hex::Hex20::shape(node, N, dN);
+    for (int b = 0; b < 20; ++b) CHECK(N[b] == Approx(a == b ? 1.0 : 0.0).margin(1e-15));
+  }
+  const Eigen::Vector3d xi(0.31, -0.72, 0.55);
+  hex::Hex20::shape(xi, N, dN);
+  double sum = 0;
+  for (double v : N) sum += v;
+  CHECK(sum == Approx(1.0).epsilon(1e-14));
+  CHECK(dN.colwise().sum().norm() < 1e-14);
+  const double h = 1e-5;
+  for (int d = 0; d < 3; ++d) {
+    Eigen::Vector3d up = xi, down = xi;
+    up[d] += h, down[d] -= h;
+    double Nu[20], Nd[20];
+    Eigen::Matrix<double, 20, 3> unused;
+    hex::Hex20::shape(up, Nu, unused);
+    hex::Hex20::shape(down, Nd, unused);
+    for (int a = 0; a < 20; ++a) CHECK((Nu[a] - Nd[a]) / (2 * h) == Approx(dN(a, d)).margin(1e-9));
+  }
+  // The face: Quad8 is the trace of Hex20 on ζ = −1 (nodes 0–3, 8–11).
+  double M[8], Ms[8], Mt[8];
+  Quad8::shape(0.31, -0.72, M, Ms, Mt);
+  hex::Hex20::shape(Eigen::Vector3d(0.31, -0.72, -1.0), N, dN);
+  constexpr int kBottom[8] = {0, 1, 2, 3, 8, 9, 10, 11};
+  for (int a = 0; a < 8; ++a) {
+    CHECK(M[a] == Approx(N[kBottom[a]]).margin(1e-15));
+    CHECK(Ms[a] == Approx(dN(kBottom[a], 0)).margin(1e-14));
+    CHECK(Mt[a] == Approx(dN(kBottom[a], 1)).margin(1e-14));
+  }
 }

@@ -1,12 +1,14 @@
 #pragma once
-// Hexahedra in (X, Y, Z): the trilinear Hex8 (2×2×2 Gauss) and the
-// triquadratic Hex27 (3×3×3 Gauss), Lagrange elements on ξ ∈ [−1, 1]³
-// (e.g. Hughes, The Finite Element Method, §3.5).
+// Hexahedra in (X, Y, Z) on ξ ∈ [−1, 1]³: the trilinear Hex8 (2×2×2 Gauss),
+// the triquadratic Lagrange Hex27 and the 20-node serendipity Hex20 (both
+// 3×3×3 Gauss) (e.g. Hughes, The Finite Element Method, §3.5 and §3.7).
 //
 // Each element carries the space onto which the dilatation J is projected for
 // the near-incompressible treatment (projected_dilatation_form.hpp): constants
 // for Hex8 (H1/P0, mean dilatation) and discontinuous linears
-// {1, X − X̄, Y − Ȳ, Z − Z̄} for Hex27 (H2/P1, inf-sup stable).
+// {1, X − X̄, Y − Ȳ, Z − Z̄} for Hex27 (H2/P1, inf-sup stable) and Hex20
+// (the pairing of Abaqus' and CalculiX's hybrid C3D20H, with full integration
+// against hourglass modes).
 //
 // Node order is VTK's. Hex8 (VTK_HEXAHEDRON = 12): the bottom face ζ = −1
 // counter-clockwise seen from +ζ, (−1,−1), (1,−1), (1,1), (−1,1), then the top
@@ -14,7 +16,8 @@
 // corners 0–7 as Hex8; mid-edge nodes 8–19 on the edges (0,1), (1,2), (2,3),
 // (3,0), (4,5), (5,6), (6,7), (7,4), (0,4), (1,5), (2,6), (3,7); face centres
 // 20–25 on the faces ξ = −1, ξ = +1, η = −1, η = +1, ζ = −1, ζ = +1; node 26 at
-// the centre. (The prose of vtkTriQuadraticHexahedron.h lists the faces in
+// the centre. Hex20 (VTK_QUADRATIC_HEXAHEDRON = 25) is Hex27 without nodes
+// 20–26, which is also the node order of Abaqus' C3D20. (The prose of vtkTriQuadraticHexahedron.h lists the faces in
 // another order, but its drawing and its parametric coordinates, which
 // ParaView uses, are the order above.)
 #include <Eigen/Core>
@@ -96,6 +99,40 @@ struct Hex27 {
       {0, 0, 0}};                                                                                      // centre
   static void shape(const Eigen::Vector3d& xi, double* N, Eigen::Matrix<double, kNodes, 3>& dN) {
     detail::tensor_shape<kOrder>(kReference, xi, N, dN);
+  }
+  static void gauss_point(int q, Eigen::Vector3d& xi, double& w) { detail::tensor_gauss_point<kOrder>(q, xi, w); }
+};
+
+/// 20-node serendipity hexahedron with a linear dilatation: about half the
+/// nodes of Hex27 on the same mesh, quadratic along every edge.
+struct Hex20 {
+  static constexpr int kNodes = 20, kGaussPoints = 27, kDilatationModes = 4, kOrder = 2;
+  static constexpr const char* name = "H2s/P1 (serendipity, projected dilatation)";
+  /// Corners: N = ⅛ (1 + ξξ_a)(1 + ηη_a)(1 + ζζ_a)(ξξ_a + ηη_a + ζζ_a − 2);
+  /// mid-edge nodes (one reference coordinate 0, say ξ_a): N = ¼ (1 − ξ²)(1 + ηη_a)(1 + ζζ_a).
+  static void shape(const Eigen::Vector3d& xi, double* N, Eigen::Matrix<double, kNodes, 3>& dN) {
+    for (int a = 0; a < kNodes; ++a) {
+      const int* c = Hex27::kReference[a];
+      int zero = -1;  // the direction along which a mid-edge node sits at 0
+      for (int d = 0; d < 3; ++d)
+        if (c[d] == 0) zero = d;
+      if (zero < 0) {
+        double f[3], s = -2.0;
+        for (int d = 0; d < 3; ++d) f[d] = 1 + c[d] * xi[d], s += c[d] * xi[d];
+        N[a] = 0.125 * f[0] * f[1] * f[2] * s;
+        for (int d = 0; d < 3; ++d) {
+          const double others = f[(d + 1) % 3] * f[(d + 2) % 3];
+          dN(a, d) = 0.125 * c[d] * others * (s + f[d]);
+        }
+      } else {
+        const int d1 = (zero + 1) % 3, d2 = (zero + 2) % 3;
+        const double b = 1 - xi[zero] * xi[zero], f1 = 1 + c[d1] * xi[d1], f2 = 1 + c[d2] * xi[d2];
+        N[a] = 0.25 * b * f1 * f2;
+        dN(a, zero) = -0.5 * xi[zero] * f1 * f2;
+        dN(a, d1) = 0.25 * b * c[d1] * f2;
+        dN(a, d2) = 0.25 * b * f1 * c[d2];
+      }
+    }
   }
   static void gauss_point(int q, Eigen::Vector3d& xi, double& w) { detail::tensor_gauss_point<kOrder>(q, xi, w); }
 };

@@ -1,6 +1,6 @@
 #pragma once
 // One loop over the Gauss points of a mesh's reference configuration, for
-// every element family (axisymmetric Quad4/Quad9, Hex8/Hex27): the body-force
+// every element family (axisymmetric Quad4/Quad9, Hex8/Hex20/Hex27): the body-force
 // and volume integrals (gravity, mass, part volumes) are written once against
 // it instead of once per element type.
 #include <stdexcept>
@@ -38,6 +38,7 @@ void for_each_weighted_node(const Mesh& mesh, Visit&& visit) {
   const bool known = detail::visit_reference_points<axisym::Quad4, axisym::ReferencePoint, 2>(mesh, visit) ||
                      detail::visit_reference_points<axisym::Quad9, axisym::ReferencePoint, 2>(mesh, visit) ||
                      detail::visit_reference_points<hex::Hex8, hex::ReferencePoint, 3>(mesh, visit) ||
+                     detail::visit_reference_points<hex::Hex20, hex::ReferencePoint, 3>(mesh, visit) ||
                      detail::visit_reference_points<hex::Hex27, hex::ReferencePoint, 3>(mesh, visit);
   if (!known)
     throw std::logic_error("unsupported element with " + std::to_string(mesh.nodes_per_element) +

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "fem/elements/axisymmetric_quad.hpp"
+#include "fem/elements/serendipity_quad.hpp"
 
 namespace softarm::fem {
 namespace {
@@ -71,7 +72,7 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
   return S;
 }
 
-// 3D quadrilateral facet (Q = Quad4 or Quad9 shape functions and its exact Gauss rule):
+// 3D quadrilateral facet (Q = Quad4, Quad8 or Quad9 shape functions and its exact Gauss rule):
 // V_f = (1/3) ∫ det[x, x_s, x_t] ds dt. det is trilinear in (x, x_s, x_t), so
 //   ∂V/∂x_a = (1/3) ∫ N_a (x_s × x_t) + N_a,s (x_t × x) + N_a,t (x × x_s),
 //   ∂²V/∂x_a∂x_b = (1/3) ∫ (N_a,s N_b − N_a N_b,s)[x_t]× + (N_a N_b,t − N_a,t N_b)[x_s]×
@@ -110,7 +111,8 @@ FacetDerivatives quad_facet_volume(const Vector& x, const std::vector<int>& node
 
 FacetDerivatives facet_volume(int dim, const Vector& x, const std::vector<int>& nodes) {
   if (dim == 2) return edge_volume(x, nodes);
-  return nodes.size() == 4 ? quad_facet_volume<axisym::Quad4>(x, nodes) : quad_facet_volume<axisym::Quad9>(x, nodes);
+  if (nodes.size() == 4) return quad_facet_volume<axisym::Quad4>(x, nodes);
+  return nodes.size() == 8 ? quad_facet_volume<Quad8>(x, nodes) : quad_facet_volume<axisym::Quad9>(x, nodes);
 }
 }  // namespace
 
@@ -120,8 +122,8 @@ ChamberPressureForm::ChamberPressureForm(const Mesh& mesh, int chamber, const Lo
   if (chamber < 0 || chamber >= static_cast<int>(mesh.chambers.size()))
     throw std::logic_error("ChamberPressureForm: no chamber " + std::to_string(chamber));
   for (const auto& f : mesh.chambers[chamber].facets) {
-    const bool ok = mesh.dim == 2 ? (f.size() == 2 || f.size() == 3) : (f.size() == 4 || f.size() == 9);
-    if (!ok) throw std::logic_error("ChamberPressureForm: facets need 2 or 3 nodes (2D), 4 or 9 nodes (3D)");
+    const bool ok = mesh.dim == 2 ? (f.size() == 2 || f.size() == 3) : (f.size() == 4 || f.size() == 8 || f.size() == 9);
+    if (!ok) throw std::logic_error("ChamberPressureForm: facets need 2 or 3 nodes (2D), 4, 8 or 9 nodes (3D)");
   }
 }
 

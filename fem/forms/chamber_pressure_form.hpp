@@ -15,11 +15,12 @@
 // 3-node: exact for the quadratic edge).
 //
 // 3D: V = Σ_facets (1/3) ∫ x·n dA (divergence theorem with div x = 3), with
-// n dA = (x_s × x_t) ds dt on a bilinear (4-node) or biquadratic (9-node)
-// quadrilateral facet in the node order of axisymmetric_quad.hpp's Quad4 / Quad9
+// n dA = (x_s × x_t) ds dt on a bilinear (4-node), serendipity (8-node) or
+// biquadratic (9-node) quadrilateral facet in the node order of
+// axisymmetric_quad.hpp's Quad4 / Quad9 and serendipity_quad.hpp's Quad8
 // (VTK's), oriented so that x_s × x_t points out of the cavity. The integrand
 // det[x, x_s, x_t] has degree ≤ 2 in each of s, t on a bilinear facet and ≤ 5
-// on a biquadratic one, so 2×2 and 3×3 Gauss–Legendre integrate it exactly.
+// on a quadratic one, so 2×2 and 3×3 Gauss–Legendre integrate it exactly.
 // The facets must close the cavity: on an open surface (1/3)∫ x·n dA is not a
 // volume and its gradient is not the pressure load.
 #include "fem/forms/form.hpp"

@@ -25,6 +25,8 @@ std::shared_ptr<ElasticForm> make_elastic_form(const Mesh& mesh, std::vector<Mat
     return std::make_shared<AxisymmetricForm<axisym::Quad9>>(mesh, std::move(part_materials), treatment);
   if (mesh.dim == 3 && n == hex::Hex8::kNodes)
     return std::make_shared<SolidForm<hex::Hex8>>(mesh, std::move(part_materials), treatment);
+  if (mesh.dim == 3 && n == hex::Hex20::kNodes)
+    return std::make_shared<SolidForm<hex::Hex20>>(mesh, std::move(part_materials), treatment);
   if (mesh.dim == 3 && n == hex::Hex27::kNodes)
     return std::make_shared<SolidForm<hex::Hex27>>(mesh, std::move(part_materials), treatment);
   throw std::logic_error("elastic form: no element for a " + std::to_string(mesh.dim) + "D mesh with " +

@@ -52,7 +52,7 @@ class ElasticForm : public Form {
 };
 
 /// The elastic form of a mesh, its element chosen by dimension and nodes per element:
-/// axisymmetric Q1/P0 (2D, 4 nodes) or Q2/P1 (2D, 9), Hex8/P0 (3D, 8) or Hex27/P1 (3D, 27).
+/// axisymmetric Q1/P0 (2D, 4 nodes) or Q2/P1 (2D, 9), Hex8/P0 (3D, 8), Hex20/P1 (3D, 20) or Hex27/P1 (3D, 27).
 /// `part_materials[i]` is the material of mesh part i. Throws std::logic_error for other
 /// meshes and for meshes with inverted elements.
 std::shared_ptr<ElasticForm> make_elastic_form(

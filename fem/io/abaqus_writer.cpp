@@ -84,8 +84,8 @@ std::vector<std::pair<int, int>> chamber_faces_3d(const Mesh& mesh, const Chambe
   auto point = [&](int n) -> Eigen::Vector3d { return mesh.X.row(n).transpose(); };
   std::vector<std::pair<int, int>> result;
   for (const auto& facet : chamber.facets) {
-    if (facet.size() != 4 && facet.size() != 9)
-      throw std::invalid_argument("write_abaqus_deck: a 3D chamber facet must have 4 or 9 nodes");
+    if (facet.size() != 4 && facet.size() != 8 && facet.size() != 9)
+      throw std::invalid_argument("write_abaqus_deck: a 3D chamber facet must have 4, 8 or 9 nodes");
     std::array<int, 4> key{facet[0], facet[1], facet[2], facet[3]};
     std::sort(key.begin(), key.end());
     const auto it = faces.find(key);
@@ -115,10 +115,11 @@ void write_abaqus_deck(const std::string& path, const AbaqusDeck& deck) {
   const Mesh& mesh = *deck.mesh;
   const bool axisymmetric = mesh.dim == 2;
   if (axisymmetric ? (mesh.nodes_per_element != 4 && mesh.nodes_per_element != 9)
-                   : (mesh.dim != 3 || (mesh.nodes_per_element != 8 && mesh.nodes_per_element != 27)))
-    throw std::invalid_argument("write_abaqus_deck: only axisymmetric Q1/Q2 and 3D Hex8/Hex27 meshes");
-  const bool quadratic = mesh.nodes_per_element == (axisymmetric ? 9 : 27);
-  // CAX8 drops the Q2 centre node, C3D20 the Hex27 face and body centres.
+                   : (mesh.dim != 3 || (mesh.nodes_per_element != 8 && mesh.nodes_per_element != 20 &&
+                                        mesh.nodes_per_element != 27)))
+    throw std::invalid_argument("write_abaqus_deck: only axisymmetric Q1/Q2 and 3D Hex8/Hex20/Hex27 meshes");
+  const bool quadratic = axisymmetric ? mesh.nodes_per_element == 9 : mesh.nodes_per_element != 8;
+  // CAX8 drops the Q2 centre node, C3D20 the Hex27 face and body centres (a Hex20 is a C3D20 as it is).
   const int written_nodes = axisymmetric ? (quadratic ? 8 : 4) : (quadratic ? 20 : 8);
   const std::string element_type =
       axisymmetric ? std::string(quadratic ? "CAX8" : "CAX4") + (deck.reduced_integration ? "R" : "")

@@ -13,9 +13,9 @@
 //    chord-edge meshes:
 //    CAX8 7.22 mm, CAX8R 7.55 mm, softarm Q2/P1 7.69 mm at level 1; 7.49, 7.62,
 //    7.65 mm at level 2);
-//  - 3D: Hex27 is written as C3D20 (its six face-centre nodes and body-centre
-//    node, VTK 20–26, are dropped: C3D20 is the serendipity element of the same
-//    edges). VTK Hex27 nodes 0–19 are already in Abaqus C3D20 order: corners
+//  - 3D: Hex20 is written as C3D20 as it is; Hex27 as C3D20 too (its six
+//    face-centre nodes and body-centre node, VTK 20–26, are dropped: C3D20 is
+//    the serendipity element of the same edges). VTK Hex27 nodes 0–19 are already in Abaqus C3D20 order: corners
 //    0–7 = Abaqus 1–8 (bottom face counter-clockwise seen from the top, then
 //    the top face), mid-edges 8–11 on (0,1), (1,2), (2,3), (3,0) = Abaqus 9–12,
 //    12–15 on (4,5), (5,6), (6,7), (7,4) = 13–16, 16–19 on (0,4), (1,5), (2,6),

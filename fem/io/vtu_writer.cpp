@@ -10,12 +10,14 @@
 namespace softarm::fem {
 namespace {
 
-constexpr int vtk_quad = 9, vtk_hexahedron = 12, vtk_biquadratic_quad = 28, vtk_triquadratic_hexahedron = 29;
+constexpr int vtk_quad = 9, vtk_hexahedron = 12, vtk_quadratic_hexahedron = 25, vtk_biquadratic_quad = 28,
+              vtk_triquadratic_hexahedron = 29;
 
 int vtk_cell_type(const Mesh& mesh) {
   if (mesh.dim == 2 && mesh.nodes_per_element == 4) return vtk_quad;
   if (mesh.dim == 2 && mesh.nodes_per_element == 9) return vtk_biquadratic_quad;  // corners, mid-edges, centre
   if (mesh.dim == 3 && mesh.nodes_per_element == 8) return vtk_hexahedron;
+  if (mesh.dim == 3 && mesh.nodes_per_element == 20) return vtk_quadratic_hexahedron;  // Hex27's first 20 nodes
   if (mesh.dim == 3 && mesh.nodes_per_element == 27) return vtk_triquadratic_hexahedron;  // fem/elements/hexahedron.hpp order
   throw std::invalid_argument("write_vtu: unsupported element (dim " + std::to_string(mesh.dim) + ", " +
                               std::to_string(mesh.nodes_per_element) + " nodes)");

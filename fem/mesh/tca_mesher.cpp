@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "fem/mesh/layered_extrusion.hpp"
+#include "fem/mesh/serendipity_mesh.hpp"
 #include "fem/mesh/spl_design.hpp"
 
 namespace softarm::fem {
@@ -186,6 +187,7 @@ Mesh mesh_stack(const std::vector<StackPiece>& pieces, int actuators, int chambe
   Mesh mesh = extrude_section(section, layers, rules, options.order, parts, chambers);
   if (options.half) mesh.node_sets["symmetry"] = mesh.node_sets["plane_y0"];
   mesh.node_sets.erase("plane_y0");
+  if (options.serendipity && options.order == 2) return serendipity_from_triquadratic(mesh);
   return mesh;
 }
 

@@ -18,9 +18,10 @@ namespace softarm::fem {
 
 struct SolidMeshOptions {
   int level = 1;
-  int order = 2;                     // 1: Hex8, 2: Hex27
+  int order = 2;                     // 1: Hex8, 2: Hex27 (or Hex20 with `serendipity`)
   bool half = false;                 // keep y ≥ 0: a half model on the symmetry plane y = 0
   double first_axis_angle_rad = 0;   // 3CA: angle of chamber 1's axis about the 3CA axis
+  bool serendipity = false;          // order 2: drop face and body centres (serendipity_mesh.hpp)
 };
 
 /// A 3CA along z ∈ [0, l]: parts "tube", "rings", "sheath"; chambers 1–3, chamber k

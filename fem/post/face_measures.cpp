@@ -5,11 +5,13 @@
 #include <stdexcept>
 
 #include "fem/elements/axisymmetric_quad.hpp"
+#include "fem/elements/serendipity_quad.hpp"
 
 namespace softarm::fem {
 namespace {
 // Faces of the VTK hexahedron in quad order, oriented out of the element
-// (corners; for Hex27 then the mid-edge nodes and the face centre).
+// (corners; for Hex27 then the mid-edge nodes and the face centre; Hex20 faces
+// are the first eight of a Hex27 face, without the centre).
 constexpr int kHex8Faces[6][4] = {{0, 4, 7, 3}, {1, 2, 6, 5}, {0, 1, 5, 4}, {3, 7, 6, 2}, {0, 3, 2, 1}, {4, 5, 6, 7}};
 constexpr int kHex27Faces[6][9] = {{0, 4, 7, 3, 16, 15, 19, 11, 20}, {1, 2, 6, 5, 9, 18, 13, 17, 21},
                                    {0, 1, 5, 4, 8, 17, 12, 16, 22},  {3, 7, 6, 2, 19, 14, 18, 10, 23},
@@ -17,16 +19,17 @@ constexpr int kHex27Faces[6][9] = {{0, 4, 7, 3, 16, 15, 19, 11, 20}, {1, 2, 6, 5
 }  // namespace
 
 std::vector<std::vector<int>> boundary_faces_in(const Mesh& mesh, const std::vector<int>& node_set) {
-  if (mesh.dim != 3 || (mesh.nodes_per_element != 8 && mesh.nodes_per_element != 27))
+  const int npe = mesh.nodes_per_element;
+  if (mesh.dim != 3 || (npe != 8 && npe != 20 && npe != 27))
     throw std::logic_error("boundary_faces_in: hexahedral meshes only");
   std::vector<char> in(mesh.num_nodes(), 0);
   for (int n : node_set) in[n] = 1;
-  const bool quadratic = mesh.nodes_per_element == 27;
+  const int face_nodes = npe == 27 ? 9 : npe == 20 ? 8 : 4;
   std::vector<std::vector<int>> faces;
   for (int e = 0; e < mesh.num_elements(); ++e)
     for (int f = 0; f < 6; ++f) {
       std::vector<int> face;
-      for (int a = 0; a < (quadratic ? 9 : 4); ++a) face.push_back(mesh.element(e)[quadratic ? kHex27Faces[f][a] : kHex8Faces[f][a]]);
+      for (int a = 0; a < face_nodes; ++a) face.push_back(mesh.element(e)[npe == 8 ? kHex8Faces[f][a] : kHex27Faces[f][a]]);
       bool all = true;
       for (int n : face) all = all && in[n];
       if (all) faces.push_back(face);
@@ -35,7 +38,7 @@ std::vector<std::vector<int>> boundary_faces_in(const Mesh& mesh, const std::vec
 }
 
 namespace {
-/// Calls visit(facet, N, p, da) at every 3×3 Gauss point of every 4- or 9-node facet:
+/// Calls visit(facet, N, p, da) at every 3×3 Gauss point of every 4-, 8- or 9-node facet:
 /// shape values N, position p and vector area element da = w x_s × x_t.
 template <class Visit>
 void for_each_facet_point(const std::vector<std::vector<int>>& facets, const Eigen::VectorXd& x, Visit&& visit) {
@@ -47,6 +50,8 @@ void for_each_facet_point(const std::vector<std::vector<int>>& facets, const Eig
         std::array<double, 9> N{}, dN_ds{}, dN_dt{};
         if (n == 9)
           axisym::Quad9::shape(kPoints[i], kPoints[j], N.data(), dN_ds.data(), dN_dt.data());
+        else if (n == 8)
+          Quad8::shape(kPoints[i], kPoints[j], N.data(), dN_ds.data(), dN_dt.data());
         else
           axisym::Quad4::shape(kPoints[i], kPoints[j], N.data(), dN_ds.data(), dN_dt.data());
         Eigen::Vector3d p = Eigen::Vector3d::Zero(), xs = p, xt = p;

@@ -1,7 +1,8 @@
 #pragma once
 // Integral measures of a face of a 3D mesh in its deformed configuration: the
 // vector area a = ∫ n dA and the centroid c = ∫ x dA / ∫ dA, integrated exactly
-// over bilinear (4-node) or biquadratic (9-node) facets with 3×3 Gauss points.
+// over bilinear (4-node), serendipity (8-node) or biquadratic (9-node) facets
+// with 3×3 Gauss points.
 // They define the 3CA's outputs (spec §4): the bending angle is the angle
 // between the free face's mean normal a/|a| now and at rest; the tip is the
 // face's centroid (a face with a centre hole has no centre node).

@@ -102,10 +102,15 @@ ModelRequest read_model(JsonReader& root, bool three_dimensional) {
 }
 
 /// The mesh and model objects of a 3D scene (levels up to `max_level` fit this machine).
-void read_3d_discretisation(JsonReader& root, int& level, int& order, bool& allow_symmetry, ModelRequest& request,
-                            int max_level, const std::string& order_doc) {
+void read_3d_discretisation(JsonReader& root, int& level, int& order, bool& serendipity, bool& allow_symmetry,
+                            ModelRequest& request, int max_level, const std::string& order_doc) {
   auto mesh = root.object("mesh", "discretisation");
   read_mesh(mesh, level, order, max_level, order_doc);
+  serendipity = mesh.boolean("serendipity", serendipity,
+                             "with element_order 2: 20-node serendipity hexahedra (Hex20/P1, the C3D20 of CalculiX) "
+                             "instead of Hex27: about 45 % fewer unknowns on the same mesh");
+  if (serendipity && order != 2)
+    throw InputError(mesh.field("serendipity"), "true needs mesh.element_order 2 (got " + std::to_string(order) + ")");
   mesh.finish();
   request = read_model(root, true);
   allow_symmetry = request.allow_symmetry;
@@ -164,7 +169,7 @@ TcaSceneSpec read_tca(JsonReader& root, ModelRequest& model_request) {
   read_actuator_materials(materials, spec.tube_material, spec.ring_material, spec.sheath_material);
   materials.finish();
 
-  read_3d_discretisation(root, spec.mesh_level, spec.element_order, spec.allow_symmetry, model_request, 3,
+  read_3d_discretisation(root, spec.mesh_level, spec.element_order, spec.serendipity, spec.allow_symmetry, model_request, 3,
                          "1: trilinear Hex8/P0 (mean dilatation; locks in bending at coarse levels); 2: triquadratic Hex27/P1");
 
   auto load = root.object("load", "loading");
@@ -203,7 +208,7 @@ SplSceneSpec read_spl(JsonReader& root, ModelRequest& model_request) {
   spec.connector_material = read_material(materials, "connector", "digital_abs");
   materials.finish();
 
-  read_3d_discretisation(root, spec.mesh_level, spec.element_order, spec.allow_symmetry, model_request, 2,
+  read_3d_discretisation(root, spec.mesh_level, spec.element_order, spec.serendipity, spec.allow_symmetry, model_request, 2,
                          "1: trilinear Hex8/P0 (a quick preview: locks in bending); 2: triquadratic Hex27/P1");
 
   auto load = root.object("load", "loading");

@@ -39,6 +39,7 @@ SplResult run_spl_scene(const SplSceneSpec& spec, const std::function<void(const
   SolidMeshOptions options;
   options.level = spec.mesh_level;
   options.order = spec.element_order;
+  options.serendipity = spec.serendipity;
   options.half = out.model.half;
   options.first_axis_angle_rad = -theta;
   Mesh mesh = mesh_spl(spec.design, options);

@@ -27,7 +27,8 @@ struct SplSceneSpec {
   SplDesign design;
   Material tube_material, ring_material, sheath_material, connector_material;
   int mesh_level = 1;
-  int element_order = 2;
+  int element_order = 2;                                  // 1: Hex8/P0, 2: Hex27/P1 or Hex20/P1
+  bool serendipity = false;                               // order 2: Hex20 instead of Hex27
   std::array<double, 9> chamber_pressure_kPa{};          // peaks, ramped together
   Eigen::Vector3d gravity_m_s2{0, 0, -9.80665};           // user frame; hanging arm by default
   double tip_mass_kg = 0;

@@ -54,7 +54,7 @@ AbaqusDeck rra_3d_abaqus_deck(const Mesh& mesh, const Material& tube, const Mate
 DirichletConstraints actuator_3d_constraints(const Mesh& mesh) { return clamped_with_symmetry(mesh, "top"); }
 
 std::vector<int> exported_nodes(const Mesh& mesh, const std::vector<int>& nodes) {
-  const int written = mesh.nodes_per_element == 27 ? 20 : mesh.nodes_per_element;
+  const int written = std::min(mesh.nodes_per_element, 20);
   std::vector<char> used(mesh.num_nodes(), 0);
   for (int e = 0; e < mesh.num_elements(); ++e)
     for (int a = 0; a < written; ++a) used[mesh.element(e)[a]] = 1;

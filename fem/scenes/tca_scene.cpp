@@ -49,6 +49,7 @@ Mesh tca_mesh(const TcaSceneSpec& spec, const ModelChoice& model) {
   SolidMeshOptions options;
   options.level = spec.mesh_level;
   options.order = spec.element_order;
+  options.serendipity = spec.serendipity;
   options.half = model.half;
   options.first_axis_angle_rad = -model.frame_angle_rad;  // the mirror chamber on +x in the solver frame
   return mesh_tca(spec.design, options);
