@@ -1,6 +1,8 @@
-// The solver layer: the direct solver's indefinite fallback, and the load
+// The solver layer: the direct solver's indefinite fallbacks (LU, shifted
+// Cholesky), and the load
 // stepper's exact landing, cut-back after a typed failure, and honest report
 // of a path it cannot finish.
+#include <Eigen/Eigenvalues>
 #include <catch2/catch.hpp>
 
 #include "fem/forms/elastic_form.hpp"
@@ -33,6 +35,39 @@ TEST_CASE("linear solver: Cholesky for SPD, LU fallback for an indefinite matrix
     const Eigen::VectorXd x = solver.solve(b);
     CHECK((K * x - b).norm() < 1e-10 * b.norm());
   }
+}
+
+TEST_CASE("linear solver: an indefinite matrix shifted to K + sigma I, the smallest of the ladder that is SPD", "[solver]") {
+  // The 1D Laplacian with its first diagonal entry made −3: its lowest eigenvalue
+  // is about −3.2, so K + σI is positive definite once σ ≳ 3.2. With the mean
+  // |diagonal| d̄ = 2.02 the ladder σ = 10^k d̄ (k = −6 … 2) first works at k = 1.
+  const int n = 50;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, i == 0 ? -3.0 : 2.0);
+    if (i + 1 < n) t.emplace_back(i, i + 1, -1.0), t.emplace_back(i + 1, i, -1.0);
+  }
+  SparseMatrix K(n, n);
+  K.setFromTriplets(t.begin(), t.end());
+  const double mean_diagonal = K.diagonal().cwiseAbs().mean();
+  const double lowest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(K)).eigenvalues()[0];
+  REQUIRE(lowest < 0);
+  LinearSolver solver;
+  CHECK(solver.factorize_shifted(K) == LinearSolver::Status::indefinite);
+  CHECK(solver.last_shift == Approx(10 * mean_diagonal));
+  CHECK(solver.last_shift > -lowest);
+  CHECK(solver.last_shift / 10 < -lowest);  // the step below was not positive definite
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+  SparseMatrix shifted = K;
+  for (int i = 0; i < n; ++i) shifted.coeffRef(i, i) += solver.last_shift;
+  const Eigen::VectorXd x = solver.solve(b);
+  CHECK((shifted * x - b).norm() < 1e-10 * b.norm());
+  CHECK(b.dot(x) > 0);  // −x is a descent direction for a gradient b
+  // An SPD matrix on the same solver is factorised as it is, with no shift left over.
+  for (int i = 0; i < n; ++i) shifted.coeffRef(i, i) = 2.0;
+  CHECK(solver.factorize_shifted(shifted) == LinearSolver::Status::positive_definite);
+  CHECK(solver.last_shift == 0.0);
+  CHECK((shifted * solver.solve(b) - b).norm() < 1e-10 * b.norm());
 }
 
 namespace {

@@ -46,6 +46,12 @@ void read_solver(JsonReader solver, fem::NewtonSettings& nw, fem::StepSettings& 
                                         "‖r‖ / max(‖r₀‖, ‖f_load‖) at convergence");
   nw.update_tolerance = solver.number("update_tolerance", nw.update_tolerance, Range::open(0, 1),
                                       "‖δx‖ / ‖u‖ at convergence");
+  nw.shift_indefinite_tangent =
+      solver.choice("indefinite_tangent", nw.shift_indefinite_tangent ? "shifted_cholesky" : "lu",
+                    {"shifted_cholesky", "lu"},
+                    "how Newton solves with a tangent that is not positive definite: shifted_cholesky (K + σI, a "
+                    "descent step; the 3D scenes' default) or lu (exact UMFPACK LU; the axisymmetric default)") ==
+      "shifted_cholesky";
   st.verbose = solver.boolean("print_convergence_tables", false, "print a Newton convergence table for every step");
   limit.stiffness_fraction =
       solver.number("limit_point_stiffness_fraction", limit.stiffness_fraction, Range::open(0, 1),

@@ -98,11 +98,21 @@ bool LinearSolver::cholesky_factorize(Chol& c, const SparseMatrix& K) {
   return c.info() == Eigen::Success;
 }
 
+bool LinearSolver::cholesky_with_shift(const SparseMatrix& K, double shift) {
+  // CHOLMOD factorises K + shift·I (its beta); Eigen keeps the shift for later calls.
+  if (options_.upper) {
+    cholesky_upper_.setShift(shift);
+    return cholesky_factorize(cholesky_upper_, K);
+  }
+  cholesky_.setShift(shift);
+  return cholesky_factorize(cholesky_, K);
+}
+
 LinearSolver::Status LinearSolver::factorize(const SparseMatrix& K) {
   match_blas_threads();
   ++factorizations;
-  if (options_.upper ? cholesky_factorize(cholesky_upper_, K) : cholesky_factorize(cholesky_, K))
-    return status_ = Status::positive_definite;
+  shifted_ = false;
+  if (cholesky_with_shift(K, 0.0)) return status_ = Status::positive_definite;
   ++lu_fallbacks;
   const auto t0 = std::chrono::steady_clock::now();
   if (!lu_analysed_) {
@@ -114,13 +124,31 @@ LinearSolver::Status LinearSolver::factorize(const SparseMatrix& K) {
   return status_ = (lu_.info() == Eigen::Success ? Status::indefinite : Status::singular);
 }
 
+LinearSolver::Status LinearSolver::factorize_shifted(const SparseMatrix& K) {
+  match_blas_threads();
+  ++factorizations;
+  shifted_ = false;
+  last_shift = 0.0;
+  if (cholesky_with_shift(K, 0.0)) return status_ = Status::positive_definite;
+  const double mean_diagonal = K.diagonal().cwiseAbs().mean();
+  for (double s = 1e-6; s <= 1e2 * (1 + 1e-12); s *= 10) {
+    ++shifted_factorizations;
+    if (cholesky_with_shift(K, s * mean_diagonal)) {
+      last_shift = s * mean_diagonal;
+      shifted_ = true;
+      return status_ = Status::indefinite;
+    }
+  }
+  return status_ = Status::singular;
+}
+
 Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) {
   const auto t0 = std::chrono::steady_clock::now();
   Eigen::VectorXd x;
   // A singular matrix has no factor to solve with (UMFPACK would dereference a null
   // numeric object): the answer is "no solution", NaN, for the caller to diagnose.
   if (status_ == Status::singular) return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
-  if (status_ == Status::positive_definite)
+  if (status_ == Status::positive_definite || shifted_)
     x = options_.upper ? Eigen::VectorXd(cholesky_upper_.solve(b)) : Eigen::VectorXd(cholesky_.solve(b));
   else
     x = lu_.solve(b);

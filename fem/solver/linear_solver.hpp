@@ -5,7 +5,12 @@
 // elimination tree) is done once per sparsity pattern and reused for every
 // Newton iteration. When the tangent is not positive definite (past a limit
 // point, or far from equilibrium) the Cholesky fails and the solve falls back
-// to UMFPACK's LU, whose symbolic analysis is likewise kept.
+// to UMFPACK's LU, whose symbolic analysis is likewise kept; or, with
+// factorize_shifted(), to the Cholesky of K + σI with the smallest σ of a
+// ladder that makes it positive definite (a Levenberg–Marquardt step, as in
+// Ipopt's inertia correction, Wächter & Biegler 2006 §3.1): a descent
+// direction for the energy at the cost of one more supernodal Cholesky, where
+// UMFPACK's LU of a 3D tangent costs minutes.
 //
 // The defaults (Options{}) are the measured best for both the 2D axisymmetric
 // scenes and 3D Hex27 bodies; see linear_solver.cpp and bench_linear_solver.
@@ -19,6 +24,8 @@ namespace softarm::fem {
 
 class LinearSolver {
  public:
+  /// positive_definite: Cholesky of K; indefinite: K is not positive definite and was
+  /// factorised by LU (factorize) or shifted to K + σI (factorize_shifted); singular: no factor.
   enum class Status { positive_definite, indefinite, singular };
 
   /// Solver configuration (the alternatives exist for bench_linear_solver).
@@ -40,13 +47,18 @@ class LinearSolver {
   /// Factorises K (same pattern every call). Returns positive_definite when
   /// Cholesky succeeded, indefinite when LU was needed and succeeded, singular otherwise.
   Status factorize(const SparseMatrix& K);
+  /// As factorize, but an indefinite K is replaced by K + σI, σ = s·d̄ for
+  /// s = 1e-6, 1e-5, …, 100 with d̄ the mean |diagonal| of K, the first that
+  /// Cholesky accepts (σ is kept in last_shift); singular if none does.
+  Status factorize_shifted(const SparseMatrix& K);
   /// Solves with the last factor; NaN everywhere when the matrix was singular (no factor).
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
   Status status() const { return status_; }
 
   // Timings of the last call, seconds (for benchmarks).
   double analyse_seconds = 0.0, factorize_seconds = 0.0, solve_seconds = 0.0;
-  int factorizations = 0, lu_fallbacks = 0;
+  int factorizations = 0, lu_fallbacks = 0, shifted_factorizations = 0;
+  double last_shift = 0.0;  // σ of the last factorize_shifted (0: K itself)
   // After the analysis (benchmarks): predicted flops and nonzeros of L, whether
   // CHOLMOD chose the supernodal factor, and CHOLMOD's peak memory in bytes.
   double factor_flops = 0.0, factor_nonzeros = 0.0, cholmod_peak_bytes = 0.0;
@@ -57,6 +69,7 @@ class LinearSolver {
   void configure(Chol& c) const;
   template <class Chol>
   bool cholesky_factorize(Chol& c, const SparseMatrix& K);
+  bool cholesky_with_shift(const SparseMatrix& K, double shift);
 
   template <int UpLo>
   struct Cholesky : Eigen::CholmodDecomposition<SparseMatrix, UpLo> {
@@ -68,6 +81,7 @@ class LinearSolver {
   Eigen::UmfPackLU<SparseMatrix> lu_;
   bool cholesky_analysed_ = false, lu_analysed_ = false;
   Status status_ = Status::singular;
+  bool shifted_ = false;  // the Cholesky factor is of K + σI
 };
 
 }  // namespace softarm::fem

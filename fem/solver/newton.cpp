@@ -55,7 +55,8 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
                        " iterations (relative residual " + scientific(rel_res) + ")";
       break;
     }
-    const auto status = solver.factorize(cur.hessian);
+    const auto status =
+        settings.shift_indefinite_tangent ? solver.factorize_shifted(cur.hessian) : solver.factorize(cur.hessian);
     report.tangent_positive_definite = status == LinearSolver::Status::positive_definite;
     if (status == LinearSolver::Status::singular) {
       report.failure = Failure::singular_tangent;
