@@ -56,9 +56,15 @@ TEST_CASE("a scene's fidelity request picks the cheapest level that meets it", "
   tca.erase("mesh");
   tca["model"] = {{"symmetry", "auto"}, {"fidelity", "balanced"}};
   c = read_scene_config(tca);
-  CHECK_FALSE(c.reduced);  // the rod's worst error along the curve is 21 %
+  CHECK_FALSE(c.reduced);  // the rod's worst error along the curve is 21 %, Hex20's 4.7 %
   CHECK(c.tca.element_order == 2);
+  CHECK_FALSE(c.tca.serendipity);
+  tca["model"] = {{"target_error_percent", 5.0}};
+  c = read_scene_config(tca);
+  CHECK_FALSE(c.reduced);
+  CHECK(c.tca.serendipity);  // Hex20 level 1, 4.7 %
   tca["model"]["fidelity"] = "fast";
+  tca["model"].erase("target_error_percent");
   CHECK(read_scene_config(tca).reduced);
 }
 

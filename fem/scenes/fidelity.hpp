@@ -25,6 +25,7 @@ struct ModelLevel {
   std::string error_measure;      // what was compared
   double seconds = 0;             // typical wall time on one core of this machine
   int dofs = 0;
+  bool serendipity = false;       // 3D: Hex20 instead of Hex27 (element_order 2)
 };
 
 struct FidelityLadder {

@@ -249,15 +249,17 @@ SceneConfig read_scene_config(const nlohmann::json& document) {
   if (request.target_error_percent) {
     // The ladder sets the mesh: a level given by hand as well would be ambiguous.
     const nlohmann::json& mesh = document.contains("mesh") ? document["mesh"] : nlohmann::json::object();
-    if (mesh.contains("level") || mesh.contains("element_order"))
-      throw InputError("model.fidelity", "the fidelity ladder picks mesh.level and mesh.element_order: give either "
-                                         "those or model.fidelity / model.target_error_percent");
+    if (mesh.contains("level") || mesh.contains("element_order") || mesh.contains("serendipity"))
+      throw InputError("model.fidelity", "the fidelity ladder picks mesh.level, mesh.element_order and "
+                                         "mesh.serendipity: give either those or model.fidelity / "
+                                         "model.target_error_percent");
     config.selection = select_model(config.scene, *request.target_error_percent);
     config.selection->reason = request.asked + ": " + config.selection->reason;
     config.reduced = config.selection->level.reduced;
     if (!config.reduced) {
       config.mesh_level() = config.selection->level.mesh_level;
       config.element_order() = config.selection->level.element_order;
+      config.tca.serendipity = config.spl.serendipity = config.selection->level.serendipity;
     }
   }
   auto output = root.object("output", "where results go");
