@@ -108,11 +108,16 @@ bool LinearSolver::cholesky_with_shift(const SparseMatrix& K, double shift) {
   return cholesky_factorize(cholesky_, K);
 }
 
-LinearSolver::Status LinearSolver::factorize(const SparseMatrix& K) {
+bool LinearSolver::plain_cholesky(const SparseMatrix& K) {
   match_blas_threads();
   ++factorizations;
   shifted_ = false;
-  if (cholesky_with_shift(K, 0.0)) return status_ = Status::positive_definite;
+  last_shift = 0.0;
+  return cholesky_with_shift(K, 0.0);
+}
+
+LinearSolver::Status LinearSolver::factorize(const SparseMatrix& K) {
+  if (plain_cholesky(K)) return status_ = Status::positive_definite;
   ++lu_fallbacks;
   const auto t0 = std::chrono::steady_clock::now();
   if (!lu_analysed_) {
@@ -125,11 +130,7 @@ LinearSolver::Status LinearSolver::factorize(const SparseMatrix& K) {
 }
 
 LinearSolver::Status LinearSolver::factorize_shifted(const SparseMatrix& K) {
-  match_blas_threads();
-  ++factorizations;
-  shifted_ = false;
-  last_shift = 0.0;
-  if (cholesky_with_shift(K, 0.0)) return status_ = Status::positive_definite;
+  if (plain_cholesky(K)) return status_ = Status::positive_definite;
   const double mean_diagonal = K.diagonal().cwiseAbs().mean();
   for (double s = 1e-6; s <= 1e2 * (1 + 1e-12); s *= 10) {
     ++shifted_factorizations;

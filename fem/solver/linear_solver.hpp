@@ -58,7 +58,7 @@ class LinearSolver {
   // Timings of the last call, seconds (for benchmarks).
   double analyse_seconds = 0.0, factorize_seconds = 0.0, solve_seconds = 0.0;
   int factorizations = 0, lu_fallbacks = 0, shifted_factorizations = 0;
-  double last_shift = 0.0;  // σ of the last factorize_shifted (0: K itself)
+  double last_shift = 0.0;  // σ of the last factorisation (0: K itself)
   // After the analysis (benchmarks): predicted flops and nonzeros of L, whether
   // CHOLMOD chose the supernodal factor, and CHOLMOD's peak memory in bytes.
   double factor_flops = 0.0, factor_nonzeros = 0.0, cholmod_peak_bytes = 0.0;
@@ -70,6 +70,7 @@ class LinearSolver {
   template <class Chol>
   bool cholesky_factorize(Chol& c, const SparseMatrix& K);
   bool cholesky_with_shift(const SparseMatrix& K, double shift);
+  bool plain_cholesky(const SparseMatrix& K);  // counts the factorisation, clears any shift
 
   template <int UpLo>
   struct Cholesky : Eigen::CholmodDecomposition<SparseMatrix, UpLo> {
