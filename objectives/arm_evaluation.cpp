@@ -17,25 +17,6 @@ fem::RodPiece segment_piece(const fem::TcaDesign& d) {
   fem::RodPiece p;
   p.kind = fem::RodPiece::Kind::tca;
   p.design = d;
-  // No calibration factor inside a 3CA: the core stops the chamber bulging between
-  // the rings, which is what the lone RRA's factor measures (README, reduced model).
-  return p;
-}
-
-// Connector c (0: shoulder, on segment 1's top; 1: between 1 and 2; 2: between 2 and 3)
-// fills the 3CA's envelope at the joint.
-fem::RodPiece connector_piece(const ArmCandidate& c, int index) {
-  const fem::SplDesign& d = c.design;
-  const fem::TcaDesign& seg = d.segments[index == 0 ? 0 : index - 1];
-  const double z = index == 0 ? seg.actuator.length_mm : 0.0;
-  const fem::RodSection s = fem::tca_section(seg, z, 0.0);
-  const double hole = 3.14159265358979323846 * std::pow(seg.centre_hole_diameter_mm / 2, 2);
-  fem::RodPiece p;
-  p.kind = fem::RodPiece::Kind::connector;
-  p.length_mm = d.connector_thickness_mm;
-  p.mass_kg = d.connector_mass_g ? *d.connector_mass_g * 1e-3
-                                 : (s.tube_area + s.sheath_area + hole) * d.connector_thickness_mm *
-                                       c.connector.density_g_cm3 * 1e-6;
   return p;
 }
 
@@ -164,8 +145,7 @@ fem::ArmRod segment_rod(const ArmCandidate& c, const EvaluationSettings& s, int 
 
 fem::ArmRod arm_rod(const ArmCandidate& c, const EvaluationSettings& s) {
   fem::ArmRodSpec spec = rod_spec(c, s);
-  spec.pieces = {connector_piece(c, 0), segment_piece(c.design.segments[0]), connector_piece(c, 1),
-                 segment_piece(c.design.segments[1]), connector_piece(c, 2), segment_piece(c.design.segments[2])};
+  spec.pieces = fem::spl_rod_pieces(c.design, c.connector);
   return fem::ArmRod(spec);
 }
 

@@ -1,5 +1,7 @@
 #include "fem/reduced/arm_rod.hpp"
 
+#include "fem/reduced/rod_continuation.hpp"
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -7,107 +9,32 @@
 
 namespace softarm::fem {
 namespace {
-constexpr double kMm3ToKgPerGcm3 = 1e-6;  // mm³ × g/cm³ → kg
-
 double cross(double ax, double az, double bx, double bz) { return ax * bz - az * bx; }
-
-// Trapezoid integral of f over the nodes [a, b].
-template <class F>
-double trapezoid(const std::vector<double>& s, int a, int b, F f) {
-  double sum = 0;
-  for (int j = a; j < b; ++j) sum += 0.5 * (s[j + 1] - s[j]) * (f(j) + f(j + 1));
-  return sum;
-}
 }  // namespace
-
-double ForceFactor::at(double p) const {
-  if (pressure_kPa.empty()) return 1.0;
-  if (p <= pressure_kPa.front()) return factor.front();
-  for (std::size_t i = 1; i < pressure_kPa.size(); ++i)
-    if (p <= pressure_kPa[i]) {
-      const double t = (p - pressure_kPa[i - 1]) / (pressure_kPa[i] - pressure_kPa[i - 1]);
-      return (1 - t) * factor[i - 1] + t * factor[i];
-    }
-  return factor.back();
-}
 
 ArmRod::ArmRod(ArmRodSpec spec)
     : spec_(std::move(spec)), tube_law_(*spec_.tube.law), sheath_law_(*spec_.sheath.law),
-      same_law_(spec_.tube.law == spec_.sheath.law) {
-  double s0 = 0;
-  for (int p = 0; p < static_cast<int>(spec_.pieces.size()); ++p) {
-    const RodPiece& piece = spec_.pieces[p];
-    const int first = static_cast<int>(nodes_.size());
-    if (piece.kind == RodPiece::Kind::connector) {
-      for (double s : {s0, s0 + piece.length_mm}) {
-        nodes_.push_back({p, true, {}});
-        s_.push_back(s);
-      }
-      interval_mass_.resize(nodes_.size() - 1, 0.0);
-      interval_mass_.back() = piece.mass_kg;
-      masses_.connectors += piece.mass_kg;
-      s0 += piece.length_mm;
-      continue;
-    }
-    const RraDesign& a = piece.design.actuator;
-    // Three zones (top cap, chamber, bottom cap) meshed separately, with a node on each side of
-    // the zone boundaries (ΔS = 0 between them): the section jumps there (solid cap vs hollow
-    // chamber), and the trapezoid rule keeps its second order only on smooth zones.
-    const double l = a.length_mm, tc = a.end_cap_thickness_mm;
-    const int n = std::max(5, spec_.nodes_per_segment);
-    const int cap_nodes = std::max(2, static_cast<int>(std::lround(n * tc / l)) + 1);
-    const std::array<std::array<double, 2>, 3> zones{{{0.0, tc}, {tc, l - tc}, {l - tc, l}}};  // in local s = l − z
-    for (int k = 0; k < 3; ++k) {
-      const int count = k == 1 ? std::max(3, n - 2 * cap_nodes) : cap_nodes;
-      const double eps = 1e-9 * l;  // evaluate the section just inside the zone
-      for (int i = 0; i < count; ++i) {
-        const double local = zones[k][0] + (zones[k][1] - zones[k][0]) * i / (count - 1);
-        const double z = std::clamp(l - local, l - zones[k][1] + eps, l - zones[k][0] - eps);
-        nodes_.push_back({p, false,
-                          piece.kind == RodPiece::Kind::tca ? tca_section(piece.design, z, spec_.bend_direction_rad)
-                                                            : rra_section(a, z)});
-        s_.push_back(s0 + local);
-      }
-    }
-    // Exact part masses (rra_design.hpp), distributed along the piece as its section areas are.
-    const double count = piece.kind == RodPiece::Kind::tca ? 3.0 : 1.0;
-    const double tube = count * tube_volume_mm3(a) * spec_.tube.density_g_cm3 * kMm3ToKgPerGcm3;
-    const double rings = count * ring_volume_mm3(a) * spec_.rings.density_g_cm3 * kMm3ToKgPerGcm3;
-    const int last = static_cast<int>(nodes_.size()) - 1;
-    const auto tube_area = [&](int j) { return nodes_[j].section.tube_area; };
-    const auto sheath_area = [&](int j) { return nodes_[j].section.sheath_area; };
-    // The rings sit half in the tube's grooves, half in the core: the core loses that half.
-    const double sheath_volume =
-        std::max(0.0, trapezoid(s_, first, last, sheath_area) - 0.5 * count * ring_volume_mm3(a));
-    const double sheath = sheath_volume * spec_.sheath.density_g_cm3 * kMm3ToKgPerGcm3;
-    const double tube_total = trapezoid(s_, first, last, tube_area);
-    const double sheath_total = trapezoid(s_, first, last, sheath_area);
-    interval_mass_.resize(nodes_.size() - 1, 0.0);
-    for (int j = first; j < last; ++j) {
-      const double ds = s_[j + 1] - s_[j];
-      double m = tube * 0.5 * ds * (tube_area(j) + tube_area(j + 1)) / tube_total + rings * ds / a.length_mm;
-      if (sheath_total > 0) m += sheath * 0.5 * ds * (sheath_area(j) + sheath_area(j + 1)) / sheath_total;
-      interval_mass_[j] = m;
-    }
-    masses_.tube += tube;
-    masses_.rings += rings;
-    masses_.sheath += sheath;
-    s0 += a.length_mm;
+      same_law_(spec_.tube.law == spec_.sheath.law), layout_(rod_nodes(spec_)) {
+  std::vector<double> tube_area, sheath_area;
+  for (const RodLayout::Node& node : layout_.nodes) {
+    const RodPiece& piece = spec_.pieces[node.piece];
+    sections_.push_back(node.rigid                          ? RodSection{}
+                        : piece.kind == RodPiece::Kind::tca ? tca_section(piece.design, node.z, spec_.bend_direction_rad)
+                                                            : rra_section(piece.design.actuator, node.z));
+    tube_area.push_back(sections_.back().tube_area);
+    sheath_area.push_back(sections_.back().sheath_area);
   }
-  interval_mass_.resize(std::max<std::size_t>(1, nodes_.size()) - 1, 0.0);
+  distribute_masses(layout_, spec_, tube_area, sheath_area);
 }
 
-double ArmRod::mass_kg() const { return masses_.tube + masses_.rings + masses_.sheath + masses_.connectors; }
+double ArmRod::mass_kg() const {
+  const RodPartMasses& m = layout_.masses;
+  return m.tube + m.rings + m.sheath + m.connectors;
+}
 
 std::vector<double> ArmRod::chamber_forces(int j, const RodLoad& load) const {
-  const Node& node = nodes_[j];
-  const RodPiece& piece = spec_.pieces[node.piece];
-  std::vector<double> f(node.section.chamber_force_area.size(), 0.0);
-  for (std::size_t k = 0; k < f.size(); ++k) {
-    const double p = load.chamber_pressure_kPa.at(node.piece)[k];
-    f[k] = piece.force_factor.at(p) * p * 1e-3 * node.section.chamber_force_area[k];  // kPa → MPa; MPa·mm² = N
-  }
-  return f;
+  const int piece = layout_.nodes[j].piece;
+  return chamber_forces_N(spec_.pieces[piece], load.chamber_pressure_kPa.at(piece), sections_[j].chamber_force_area);
 }
 
 // One shot: integrates the rod from the clamp with the clamp-section moment m0
@@ -123,8 +50,8 @@ double ArmRod::shoot(double m0, const RodLoad& load, RodState& st, std::string& 
   fx[n - 1] = load.tip_mass_kg * gx;
   fz[n - 1] = load.tip_mass_kg * gz;
   for (int j = n - 2; j >= 0; --j) {
-    fx[j] = fx[j + 1] + interval_mass_[j] * gx;
-    fz[j] = fz[j + 1] + interval_mass_[j] * gz;
+    fx[j] = fx[j + 1] + layout_.interval_mass[j] * gx;
+    fz[j] = fz[j + 1] + layout_.interval_mass[j] * gz;
   }
   const double stretch_guess = st.stretch.size() == static_cast<std::size_t>(n) ? st.stretch[0] : 1.0;
   st.theta.resize(n);
@@ -134,9 +61,9 @@ double ArmRod::shoot(double m0, const RodLoad& load, RodState& st, std::string& 
   st.z.assign(n, 0.0);
   st.moment.resize(n);
   const auto section = [&](int j, double theta, double m, SectionState guess) -> SectionState {
-    if (nodes_[j].rigid) return {1.0, 0.0, true, {}};
+    if (layout_.nodes[j].rigid) return {1.0, 0.0, true, {}};
     const double axial = fx[j] * std::cos(theta) + fz[j] * std::sin(theta);
-    return solve_section(nodes_[j].section, laws(), chamber_forces(j, load), axial, m, guess);
+    return solve_section(sections_[j], laws(), chamber_forces(j, load), axial, m, guess);
   };
   SectionState s = section(0, load.clamp_angle_rad, m0, {stretch_guess, 0.0, true, {}});
   if (!s.ok) return failure = s.failure, std::nan("");
@@ -145,7 +72,7 @@ double ArmRod::shoot(double m0, const RodLoad& load, RodState& st, std::string& 
   st.curvature[0] = s.curvature;
   st.moment[0] = m0;
   for (int j = 0; j + 1 < n; ++j) {
-    const double ds = s_[j + 1] - s_[j], w = interval_mass_[j];
+    const double ds = layout_.s[j + 1] - layout_.s[j], w = layout_.interval_mass[j];
     double theta = st.theta[j] + st.curvature[j] * ds, stretch = st.stretch[j], m = st.moment[j];
     SectionState next{stretch, st.curvature[j], true, {}};
     for (int it = 0; it < 30; ++it) {
@@ -177,7 +104,7 @@ RodState ArmRod::solve(const RodLoad& load, const RodState* start) const {
   double scale = 1.0;
   for (int j = 0; j < node_count(); ++j) {
     const auto f = chamber_forces(j, load);
-    for (std::size_t k = 0; k < f.size(); ++k) scale = std::max(scale, std::abs(f[k] * nodes_[j].section.chamber_y[k]));
+    for (std::size_t k = 0; k < f.size(); ++k) scale = std::max(scale, std::abs(f[k] * sections_[j].chamber_y[k]));
   }
   scale = std::max(scale, (load.tip_mass_kg + mass_kg()) * std::hypot(load.gravity_m_s2[0], load.gravity_m_s2[1]) *
                               length_mm());
@@ -189,8 +116,8 @@ RodState ArmRod::solve(const RodLoad& load, const RodState* start) const {
     const double tx = std::cos(load.clamp_angle_rad), tz = std::sin(load.clamp_angle_rad);
     const double gx = load.gravity_m_s2[0], gz = load.gravity_m_s2[1];
     for (int j = 0; j + 1 < node_count(); ++j) {
-      const double arm = 0.5 * (s_[j] + s_[j + 1]);
-      m0 += cross(arm * tx, arm * tz, interval_mass_[j] * gx, interval_mass_[j] * gz);
+      const double arm = 0.5 * (layout_.s[j] + layout_.s[j + 1]);
+      m0 += cross(arm * tx, arm * tz, layout_.interval_mass[j] * gx, layout_.interval_mass[j] * gz);
     }
     m0 += cross(length_mm() * tx, length_mm() * tz, load.tip_mass_kg * gx, load.tip_mass_kg * gz);
   }
@@ -230,59 +157,28 @@ RodState ArmRod::solve(const RodLoad& load, const RodState* start) const {
 
 RodState ArmRod::follow(const RodLoad& load, int steps,
                         const std::function<void(double, const RodState&)>& on_step) const {
-  // Stage 1: gravity and tip mass at zero pressure (4 steps); stage 2: the pressures.
-  const auto at = [&](double gravity_fraction, double pressure_fraction) {
+  const auto solve_at = [&](double gravity_fraction, double pressure_fraction, const RodState* start) {
     RodLoad l = load;
     for (auto& p : l.chamber_pressure_kPa)
       for (double& v : p) v *= pressure_fraction;
     l.gravity_m_s2 = {load.gravity_m_s2[0] * gravity_fraction, load.gravity_m_s2[1] * gravity_fraction};
-    l.tip_mass_kg = load.tip_mass_kg;
-    return l;
-  };
-  RodState state;
-  bool have = false;
-  const auto march = [&](bool gravity_stage, int count) -> bool {
-    double done = 0, step = 1.0 / count;
-    while (done < 1.0 - 1e-12) {
-      const double next = std::min(1.0, done + step);
-      const RodLoad l = gravity_stage ? at(next, 0.0) : at(1.0, next);
-      RodState trial = solve(l, have ? &state : nullptr);
-      if (trial.converged) {
-        state = std::move(trial);
-        have = true;
-        done = next;
-        if (!gravity_stage && on_step) on_step(done, state);
-        step = std::min(step * 1.5, 1.0 / count);
-      } else if ((step *= 0.5) < 1.0 / (64.0 * count)) {
-        if (!have) state = trial;
-        state.converged = false;
-        state.diagnosis = (gravity_stage ? "under gravity alone: " : "at " + std::to_string(done) + " of the pressure: ") +
-                          trial.diagnosis;
-        return false;
-      }
-    }
-    return true;
+    return solve(l, start);
   };
   const bool loaded = std::abs(load.gravity_m_s2[0]) + std::abs(load.gravity_m_s2[1]) > 0 || load.tip_mass_kg > 0;
-  if (!loaded || march(true, 4)) march(false, steps);
-  return state;
+  return follow_rod_load<RodState>(loaded, steps, solve_at, on_step);
 }
 
 PieceExtremes ArmRod::extremes(const RodState& s, const RodLoad& load, int piece) const {
   PieceExtremes e;
   bool first = true;
   for (int j = 0; j < node_count(); ++j) {
-    if (nodes_[j].piece != piece || nodes_[j].rigid) continue;
+    if (layout_.nodes[j].piece != piece || layout_.nodes[j].rigid) continue;
     const SectionState st{s.stretch[j], s.curvature[j], true, {}};
-    const FibreExtremes f = fibre_extremes(nodes_[j].section, st);
-    e.tube_max_stretch = first ? f.tube_max : std::max(e.tube_max_stretch, f.tube_max);
-    e.tube_min_stretch = first ? f.tube_min : std::min(e.tube_min_stretch, f.tube_min);
-    e.sheath_max_stretch = first ? f.sheath_max : std::max(e.sheath_max_stretch, f.sheath_max);
-    e.sheath_min_stretch = first ? f.sheath_min : std::min(e.sheath_min_stretch, f.sheath_min);
-    for (std::size_t k = 0; k < nodes_[j].section.chamber_y.size(); ++k)
+    e.widen(fibre_extremes(sections_[j], st), first);
+    for (std::size_t k = 0; k < sections_[j].chamber_y.size(); ++k)
       if (load.chamber_pressure_kPa.at(piece)[k] > 0)
         e.chamber_max_stretch =
-            std::max(e.chamber_max_stretch, s.stretch[j] - s.curvature[j] * nodes_[j].section.chamber_y[k]);
+            std::max(e.chamber_max_stretch, s.stretch[j] - s.curvature[j] * sections_[j].chamber_y[k]);
     first = false;
   }
   return e;

@@ -23,32 +23,11 @@
 
 #include "fem/materials/material.hpp"
 #include "fem/reduced/fibre_law.hpp"
+#include "fem/reduced/rod_layout.hpp"
 #include "fem/reduced/rod_section.hpp"
 #include "fem/reduced/section_equilibrium.hpp"
 
 namespace softarm::fem {
-
-/// Multiplier of the chambers' pressure force p·A_c, as a function of pressure
-/// (piecewise linear, constant beyond the ends): 1 without calibration.
-struct ForceFactor {
-  std::vector<double> pressure_kPa, factor;
-  double at(double p_kPa) const;
-};
-
-struct RodPiece {
-  enum class Kind { rra, tca, connector } kind = Kind::tca;
-  TcaDesign design;        // tca: the segment; rra: design.actuator
-  double length_mm = 0;    // connector only
-  double mass_kg = 0;      // connector only
-  ForceFactor force_factor;
-};
-
-struct ArmRodSpec {
-  std::vector<RodPiece> pieces;  // from the clamp to the tip
-  Material tube, rings, sheath;
-  int nodes_per_segment = 33;
-  double bend_direction_rad = 0;  // in each 3CA's section: 0 = towards chamber 1
-};
 
 struct RodLoad {
   /// Per piece (connectors ignored): chamber pressures 1..3 (an RRA uses the first).
@@ -65,12 +44,6 @@ struct RodState {
   bool converged = false;
   std::string diagnosis;
   int newton_iterations = 0;                      // shooting (secant) iterations
-};
-
-/// Fibre extremes of one piece at a state (for stress, stretch and durability measures).
-struct PieceExtremes {
-  double tube_max_stretch = 1, tube_min_stretch = 1, sheath_max_stretch = 1, sheath_min_stretch = 1;
-  double chamber_max_stretch = 1;  // largest axial stretch at a pressurised chamber's axis
 };
 
 class ArmRod {
@@ -90,26 +63,19 @@ class ArmRod {
   PieceExtremes extremes(const RodState& s, const RodLoad& load, int piece) const;
 
   double mass_kg() const;
-  struct PartMasses { double tube = 0, rings = 0, sheath = 0, connectors = 0; };
-  PartMasses part_masses_kg() const { return masses_; }
-  double length_mm() const { return s_.back(); }
-  const std::vector<double>& arc_length() const { return s_; }
-  int node_count() const { return static_cast<int>(s_.size()); }
+  using PartMasses = RodPartMasses;
+  PartMasses part_masses_kg() const { return layout_.masses; }
+  double length_mm() const { return layout_.s.back(); }
+  const std::vector<double>& arc_length() const { return layout_.s; }
+  int node_count() const { return static_cast<int>(layout_.s.size()); }
 
  private:
-  struct Node {
-    int piece = -1;
-    bool rigid = false;
-    RodSection section;
-  };
   ArmRodSpec spec_;
   FibreLaw tube_law_, sheath_law_;
   bool same_law_ = false;  // tube and sheath of one material: one table lookup per fibre
   SectionLaws laws() const { return {&tube_law_, same_law_ ? &tube_law_ : &sheath_law_}; }
-  std::vector<Node> nodes_;
-  std::vector<double> s_;             // reference arc length per node
-  std::vector<double> interval_mass_; // kg between node j and j + 1
-  PartMasses masses_;
+  RodLayout layout_;
+  std::vector<RodSection> sections_;  // per node (empty at a connector)
 
   double shoot(double clamp_moment_Nmm, const RodLoad& load, RodState& state, std::string& failure) const;
   std::vector<double> chamber_forces(int node, const RodLoad& load) const;

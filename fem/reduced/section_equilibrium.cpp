@@ -43,6 +43,12 @@ Residual residual(const RodSection& s, const SectionLaws& laws, double f_sum, do
 }
 }  // namespace
 
+std::string fibre_range_failure(const SectionLaws& laws, double lo, double hi) {
+  if (lo >= laws.tube->lambda_min() && hi <= laws.tube->lambda_max()) return {};
+  return "fibre stretch outside [" + std::to_string(laws.tube->lambda_min()) + ", " +
+         std::to_string(laws.tube->lambda_max()) + "]";
+}
+
 SectionState solve_section(const RodSection& s, const SectionLaws& laws, const std::vector<double>& chamber_force_N,
                            double axial_force_N, double moment_Nmm, SectionState guess) {
   double f_sum = 0, f_moment = 0;
@@ -79,10 +85,8 @@ SectionState solve_section(const RodSection& s, const SectionLaws& laws, const s
     st.stretch += d[0];
     st.curvature += d[1];
     const double l_lo = st.stretch - std::abs(st.curvature) * y_max, l_hi = st.stretch + std::abs(st.curvature) * y_max;
-    if (l_lo < laws.tube->lambda_min() || l_hi > laws.tube->lambda_max()) {
+    if (st.failure = fibre_range_failure(laws, l_lo, l_hi); !st.failure.empty()) {
       st.ok = false;
-      st.failure = "fibre stretch outside [" + std::to_string(laws.tube->lambda_min()) + ", " +
-                   std::to_string(laws.tube->lambda_max()) + "]";
       return st;
     }
   }
@@ -91,22 +95,22 @@ SectionState solve_section(const RodSection& s, const SectionLaws& laws, const s
   return st;
 }
 
+void FibreExtremes::include(double l, bool tube, bool sheath) {
+  if (tube) {
+    tube_max = have_tube_ ? std::max(tube_max, l) : l;
+    tube_min = have_tube_ ? std::min(tube_min, l) : l;
+    have_tube_ = true;
+  }
+  if (sheath) {
+    sheath_max = have_sheath_ ? std::max(sheath_max, l) : l;
+    sheath_min = have_sheath_ ? std::min(sheath_min, l) : l;
+    have_sheath_ = true;
+  }
+}
+
 FibreExtremes fibre_extremes(const RodSection& s, const SectionState& st) {
   FibreExtremes e;
-  bool tube = false, sheath = false;
-  for (const auto& f : s.strips) {
-    const double l = st.stretch - st.curvature * f.y;
-    if (f.tube_area > 0) {
-      e.tube_max = tube ? std::max(e.tube_max, l) : l;
-      e.tube_min = tube ? std::min(e.tube_min, l) : l;
-      tube = true;
-    }
-    if (f.sheath_area > 0) {
-      e.sheath_max = sheath ? std::max(e.sheath_max, l) : l;
-      e.sheath_min = sheath ? std::min(e.sheath_min, l) : l;
-      sheath = true;
-    }
-  }
+  for (const auto& f : s.strips) e.include(st.stretch - st.curvature * f.y, f.tube_area > 0, f.sheath_area > 0);
   return e;
 }
 

@@ -31,6 +31,9 @@ struct SectionState {
   std::string failure;    // why not ok
 };
 
+/// Why fibre stretches in [lo, hi] leave the tube law's table (empty if they do not).
+std::string fibre_range_failure(const SectionLaws& laws, double lo, double hi);
+
 /// Solves R = 0 from `guess`; forces in N, moment in N·mm.
 SectionState solve_section(const RodSection& section, const SectionLaws& laws, const std::vector<double>& chamber_force_N,
                            double axial_force_N, double moment_Nmm, SectionState guess);
@@ -38,6 +41,11 @@ SectionState solve_section(const RodSection& section, const SectionLaws& laws, c
 /// Largest and smallest fibre stretch of a material over the section at a state.
 struct FibreExtremes {
   double tube_max = 1, tube_min = 1, sheath_max = 1, sheath_min = 1;
+  /// Widens the extremes by a fibre of stretch λ holding tube and/or sheath material.
+  void include(double stretch, bool tube, bool sheath);
+
+ private:
+  bool have_tube_ = false, have_sheath_ = false;
 };
 FibreExtremes fibre_extremes(const RodSection& section, const SectionState& state);
 
