@@ -3,9 +3,14 @@
 // uncalibrated vs the axisymmetric FEM), the thesis 3CA's bending curve by the
 // rod (and, with --with-3d, by the 3D Hex27 FEM of configs/tca_thesis.json on
 // the same pressures: minutes to tens of minutes), and the whole arm's mass and
-// payload capacity.
+// payload capacity; the thesis SPL pose (configs/spl_thesis_pose.json) by the
+// spatial rod at several node counts and section grids (its discretisation
+// error: the tip against the finest); with --out-of-plane also an out-of-plane bend,
+// the 32 mm 3CA of configs/convergence with chambers 1 and 2 at 200 and
+// 100 kPa, by the spatial rod and by the 3D Hex27 full model (bending angle
+// and the azimuth of the tip's displacement).
 //
-// Usage (from the repository root): bench_reduced_model [--with-3d] [--repeat N]
+// Usage (from the repository root): bench_reduced_model [--with-3d] [--out-of-plane] [--repeat N]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -14,6 +19,9 @@
 #include <vector>
 
 #include "fem/scenes/scene_config.hpp"
+#include "fem/reduced/reduced_scenes.hpp"
+#include "fem/reduced/spatial_rod.hpp"
+#include "fem/scenes/tca_scene.hpp"
 #include "fem/reduced/rra_calibration.hpp"
 #include "objectives/arm_evaluation.hpp"
 #include "objectives/payload_capacity.hpp"
@@ -30,10 +38,11 @@ double median(std::vector<double> v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool with_3d = false;
+  bool with_3d = false, out_of_plane = false;
   int repeat = 5;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--with-3d")) with_3d = true;
+    else if (!std::strcmp(argv[i], "--out-of-plane")) out_of_plane = true;
     else if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
   }
   const fem::Material ds30 = fem::builtin_material("dragon_skin_30", "bench"), abs = fem::builtin_material("digital_abs", "bench");
@@ -131,5 +140,66 @@ int main(int argc, char** argv) {
   std::printf("thesis arm: mass %.3f kg, payload capacity %.3f kg at %.1f kPa (%s), %d rod solves, %.3f s (median of %d)\n",
               whole.mass_kg(), payload.capacity_kg, payload.lift_pressure_kPa, payload.limited_by.c_str(),
               payload.rod_solves, median(payload_times), repeat);
+
+  // 4. The thesis SPL pose by the spatial rod: discretisation convergence of the tip.
+  const fem::SceneConfig pose = fem::load_scene_config("configs/spl_thesis_pose.json");
+  struct Run { int nodes, cells; };
+  const std::vector<Run> runs{{9, 24}, {17, 16}, {17, 24}, {17, 48}, {33, 24}, {65, 48}};
+  std::vector<fem::ReducedSplResult> results;
+  std::vector<double> seconds;
+  for (const Run& run : runs) {
+    std::vector<double> t;
+    for (int k = 0; k < repeat; ++k) {
+      results.push_back(fem::run_reduced_spl(pose.spl, run.nodes, run.cells));
+      t.push_back(results.back().seconds);
+    }
+    seconds.push_back(median(t));
+  }
+  const Eigen::Vector3d finest = results.back().joints.back().pose.position_mm;
+  const double reach = (finest - results.back().joints.front().pose.position_mm).norm();
+  std::printf("thesis SPL pose by the spatial rod (tip; error against %d nodes x %d cells, relative to the shoulder-tip "
+              "distance %.1f mm):\n  nodes/segment  cells  tip_x_mm  tip_y_mm  tip_z_mm  tilt_deg  error_%%  time_s (median of %d)\n",
+              runs.back().nodes, runs.back().cells, reach, repeat);
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const auto& r = results[(i + 1) * repeat - 1];
+    const auto& tip = r.joints.back().pose;
+    std::printf("  %13d  %5d  %8.2f  %8.2f  %8.2f  %8.2f  %7.3f  %6.3f%s\n", runs[i].nodes, runs[i].cells,
+                tip.position_mm.x(), tip.position_mm.y(), tip.position_mm.z(), tip.tilt_deg,
+                100 * (tip.position_mm - finest).norm() / reach, seconds[i], r.final_state.converged ? "" : "  (stopped)");
+  }
+  if (!out_of_plane) return 0;
+
+  // 5. Out of plane: the 32 mm 3CA, chambers 1 and 2 at 200 and 100 kPa (the bend's azimuth is set
+  // by the two chambers' moments, between the planes of symmetry).
+  fem::SceneConfig cut = fem::load_scene_config("configs/convergence/tca_32mm.json");
+  cut.tca.chamber_pressure_kPa = {200, 100, 0};
+  cut.tca.output_pressures_kPa = {50, 100, 150, 200};
+  const auto t3 = Clock::now();
+  const fem::TcaResult fem3d = fem::run_tca_scene(cut.tca);
+  const double fem3d_s = since(t3);
+  fem::ArmRodSpec one;
+  one.pieces = {fem::RodPiece{}};
+  one.pieces[0].design = cut.tca.design;
+  one.tube = one.sheath = ds30;
+  one.rings = abs;
+  one.nodes_per_segment = 17;
+  const fem::SpatialRod spatial(one);
+  fem::SpatialRodLoad sl;
+  sl.chamber_pressure_kPa = {{200, 100, 0}};
+  sl.clamp_position_mm = {0, 0, cut.tca.design.actuator.length_mm};
+  std::vector<fem::SpatialRodState> rod_states;
+  const auto t4 = Clock::now();
+  spatial.follow(sl, 4, [&](double, const fem::SpatialRodState& st) { rod_states.push_back(st); });
+  const double rod_s = since(t4);
+  std::printf("32 mm 3CA, chambers 1, 2 at 200, 100 kPa: 3D %s (%d dofs, %s) %.1f s; spatial rod %.3f s\n",
+              fem3d.element_name.c_str(), fem3d.dofs, fem3d.model.name.c_str(), fem3d_s, rod_s);
+  std::printf("  chamber1_kPa  fem_deg  rod_deg  fem_azimuth_deg  rod_azimuth_deg  fem_tip_u_mm  rod_tip_u_mm\n");
+  const int tip = spatial.node_count() - 1;
+  for (std::size_t i = 0; i < rod_states.size() && i < fem3d.curve.size(); ++i) {
+    const Eigen::Vector3d uf = fem3d.curve[i].tip_displacement_mm, ur = rod_states[i].position.back();
+    std::printf("  %12.1f  %7.3f  %7.3f  %15.2f  %15.2f  %12.3f  %12.3f\n", fem3d.curve[i].pressure_kPa,
+                fem3d.curve[i].bending_angle_deg, spatial.tilt_deg(rod_states[i], sl, tip),
+                std::atan2(uf.y(), uf.x()) * 180 / M_PI, std::atan2(ur.y(), ur.x()) * 180 / M_PI, uf.norm(), ur.norm());
+  }
   return 0;
 }

@@ -45,9 +45,15 @@ int simulate_spl(const fem::SceneConfig& config) {
 }
 
 int simulate(const std::string& file, const std::string& output_override, int mesh_level_override,
-             int element_order_override) {
+             int element_order_override, const std::string& fidelity_override) {
   fem::SceneConfig config = fem::load_scene_config(file);
   if (!output_override.empty()) config.output.directory = output_override;
+  if (!fidelity_override.empty()) {
+    if (mesh_level_override > 0 || element_order_override > 0)
+      throw fem::InputError("--fidelity", "the fidelity ladder picks the mesh: give --fidelity or --mesh-level / "
+                                          "--element-order, not both");
+    fem::apply_fidelity(config, fem::fidelity_target_percent(fidelity_override), "--fidelity " + fidelity_override);
+  }
   if ((mesh_level_override > 0 || element_order_override > 0) && config.selection) {
     std::cout << "--mesh-level / --element-order override the fidelity ladder's choice (" << config.selection->level.name
               << ")\n";
@@ -180,6 +186,10 @@ int run_cli(int argc, char** argv) {
   int element_order = 0;
   sim->add_option("--element-order", element_order, "1 (linear) or 2 (quadratic): overrides mesh.element_order")
       ->check(CLI::Range(1, 2));
+  std::string fidelity_choice;
+  sim->add_option("--fidelity", fidelity_choice,
+                  "fast, balanced or accurate: the fidelity ladder picks the model (overrides the config's mesh and model.fidelity)")
+      ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
 
   std::string deck_path = "out/scene.inp";
   double deck_pressure_kPa = 0.0;
@@ -231,7 +241,7 @@ int run_cli(int argc, char** argv) {
   }
   if (threads > 0) fem::set_thread_count(threads);
   try {
-    if (*sim) return simulate(scene_file, output_dir, mesh_level, element_order);
+    if (*sim) return simulate(scene_file, output_dir, mesh_level, element_order, fidelity_choice);
     if (*design) return run_design(design_file, design_overrides);
     if (*study) return run_study_command(study_options);
     if (*fidelity) {

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "engine/output_files.hpp"
+#include "engine/spl_report.hpp"
 #include "fem/reduced/reduced_scenes.hpp"
 
 namespace softarm::engine {
@@ -31,9 +32,39 @@ nlohmann::json model_json(const fem::SceneConfig& config) {
           {"reason", s.reason}};
 }
 
+int simulate_reduced_spl(const fem::SceneConfig& config) {
+  const auto& dir = config.output.directory;
+  SplCurveWriter writer(dir, std::cout);
+  const fem::ReducedSplResult r = fem::run_reduced_spl(config.spl);
+  for (const auto& s : r.curve) writer.add(s);
+  const fem::SpatialRodState& f = r.final_state;
+  std::cout << "\noutcome: " << (f.converged ? "completed" : "stopped — " + f.diagnosis) << "\n";
+  print_joint_table(r.joints, std::cout);
+  const auto& m = r.part_masses;
+  std::cout << std::setprecision(1) << "mass: " << 1e3 * r.mass_kg << " g (tube " << 1e3 * m.tube << " g, rings "
+            << 1e3 * m.rings << " g, sheath " << 1e3 * m.sheath << " g, connectors " << 1e3 * m.connectors
+            << " g)\n" << std::setprecision(3) << "spatial rod, " << r.nodes << " nodes, " << r.seconds << " s\n";
+  std::cout.unsetf(std::ios::floatfield);
+  nlohmann::json segments = nlohmann::json::array();
+  for (const auto& e : r.segment_extremes)
+    segments.push_back({{"tube_max_stretch", e.tube_max_stretch}, {"tube_min_stretch", e.tube_min_stretch},
+                        {"sheath_max_stretch", e.sheath_max_stretch}, {"sheath_min_stretch", e.sheath_min_stretch},
+                        {"chamber_max_stretch", e.chamber_max_stretch}});
+  write_json_file(dir, "summary.json",
+                  {{"scene", "spl"}, {"model", model_json(config)}, {"outcome", f.converged ? "completed" : "stopped"},
+                   {"diagnosis", f.diagnosis}, {"reached_load_fraction", r.curve.empty() ? 0.0 : r.curve.back().load_fraction},
+                   {"joints", joints_json(r.joints)},
+                   {"mass_kg", {{"tube", m.tube}, {"rings", m.rings}, {"sheath", m.sheath}, {"connectors", m.connectors},
+                                {"total", r.mass_kg}}},
+                   {"segment_fibre_extremes", segments}, {"rod_nodes", r.nodes}, {"seconds", r.seconds}});
+  std::cout << "written: " << dir << "/curve.csv, " << dir << "/summary.json\n";
+  return f.converged ? 0 : 1;
+}
+
 }  // namespace
 
 int simulate_reduced(const fem::SceneConfig& config) {
+  if (config.scene == "spl") return simulate_reduced_spl(config);
   if (config.scene == "rra") {
     const fem::ReducedRraResult r = fem::run_reduced_rra(config.rra);
     write_curve(config, "extension_mm", r.pressure_kPa, r.extension_mm);

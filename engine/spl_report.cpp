@@ -22,6 +22,25 @@ nlohmann::json pose_json(const fem::FacePose& pose) {
 }
 }  // namespace
 
+nlohmann::json joints_json(const std::vector<fem::SplJoint>& joints) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& j : joints) {
+    auto entry = pose_json(j.pose);
+    entry["joint"] = j.name;
+    out.push_back(entry);
+  }
+  return out;
+}
+
+void print_joint_table(const std::vector<fem::SplJoint>& joints, std::ostream& out) {
+  out << "joints (user frame: z along the arm, shoulder at the top):\n"
+      << "  joint                               x_mm       y_mm       z_mm   tilt_deg\n";
+  for (const auto& j : joints)
+    out << "  " << std::left << std::setw(32) << j.name << std::right << std::fixed << std::setprecision(2)
+        << std::setw(11) << j.pose.position_mm.x() << std::setw(11) << j.pose.position_mm.y() << std::setw(11)
+        << j.pose.position_mm.z() << std::setw(11) << j.pose.tilt_deg << "\n";
+}
+
 SplCurveWriter::SplCurveWriter(const std::string& directory, std::ostream& out)
     : csv_(open_output_file(directory, "curve.csv")), out_(out) {
   csv_ << "load_fraction,tip_x_mm,tip_y_mm,tip_z_mm,tip_tilt_deg,newton_iterations\n";
@@ -41,12 +60,7 @@ void SplCurveWriter::add(const fem::SplState& s) {
 nlohmann::json write_spl_summary(const fem::SceneConfig& config, const fem::SplResult& r, std::ostream& out) {
   const auto& spec = config.spl;
   const auto& dir = config.output.directory;
-  nlohmann::json joints = nlohmann::json::array(), peaks = nlohmann::json::object(), mass = nlohmann::json::object();
-  for (const auto& j : r.joints) {
-    auto entry = pose_json(j.pose);
-    entry["joint"] = j.name;
-    joints.push_back(entry);
-  }
+  nlohmann::json peaks = nlohmann::json::object(), mass = nlohmann::json::object();
   for (const auto& p : r.final_peaks)
     peaks[p.part] = {{"max_principal_stretch", p.max_principal_stretch},
                      {"max_principal_stress_MPa", p.max_principal_stress_MPa}};
@@ -63,7 +77,7 @@ nlohmann::json write_spl_summary(const fem::SceneConfig& config, const fem::SplR
       {"outcome", fem::to_string(r.path.outcome)},
       {"diagnosis", r.path.diagnosis},
       {"reached_load_fraction", r.curve.empty() ? 0.0 : r.curve.back().load_fraction},
-      {"joints", joints},
+      {"joints", joints_json(r.joints)},
       {"mass_kg", mass},
       {"final_peaks", peaks},
       {"solver", {{"load_steps", r.path.path.stats.steps}, {"newton_iterations", r.path.path.stats.newton_iterations},
@@ -82,13 +96,8 @@ nlohmann::json write_spl_summary(const fem::SceneConfig& config, const fem::SplR
     fem::write_vtu(dir + "/deformed.vtu", r.mesh, x, {},
                    {{"max_principal_stretch", 1, stretch}, {"max_principal_cauchy_stress_MPa", 1, stress}});
   }
-  out << "\noutcome: " << fem::to_string(r.path.outcome) << " — " << r.path.diagnosis << "\n"
-      << "joints (user frame: z along the arm, shoulder at the top):\n"
-      << "  joint                               x_mm       y_mm       z_mm   tilt_deg\n";
-  for (const auto& j : r.joints)
-    out << "  " << std::left << std::setw(32) << j.name << std::right << std::fixed << std::setprecision(2)
-        << std::setw(11) << j.pose.position_mm.x() << std::setw(11) << j.pose.position_mm.y() << std::setw(11)
-        << j.pose.position_mm.z() << std::setw(11) << j.pose.tilt_deg << "\n";
+  out << "\noutcome: " << fem::to_string(r.path.outcome) << " — " << r.path.diagnosis << "\n";
+  print_joint_table(r.joints, out);
   out << std::setprecision(1) << "mass: " << 1e3 * r.mass_kg << " g (";
   for (std::size_t i = 0; i < r.part_mass_kg.size(); ++i)
     out << (i ? ", " : "") << r.part_mass_kg[i].first << " " << 1e3 * r.part_mass_kg[i].second << " g";

@@ -20,6 +20,10 @@ class SplCurveWriter {
   std::ostream& out_;
 };
 
+/// Every joint's position and orientation, as JSON and as the table on stdout.
+nlohmann::json joints_json(const std::vector<fem::SplJoint>& joints);
+void print_joint_table(const std::vector<fem::SplJoint>& joints, std::ostream& out);
+
 nlohmann::json write_spl_summary(const fem::SceneConfig& config, const fem::SplResult& result, std::ostream& out);
 
 }  // namespace softarm::engine

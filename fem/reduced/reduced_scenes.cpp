@@ -74,3 +74,60 @@ ReducedTcaResult run_reduced_tca(const TcaSceneSpec& spec, int nodes) {
 }
 
 }  // namespace softarm::fem
+
+namespace softarm::fem {
+
+ReducedSplResult run_reduced_spl(const SplSceneSpec& spec, int nodes_per_segment, int cells) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ArmRodSpec arm;
+  arm.pieces = spl_rod_pieces(spec.design, spec.connector_material);
+  arm.tube = spec.tube_material;
+  arm.sheath = spec.sheath_material;
+  arm.rings = spec.ring_material;
+  arm.nodes_per_segment = nodes_per_segment;
+  const SpatialRod rod(arm, cells);
+  // Scene frame (spl_scene.hpp): z along the arm, the tip at z = 0 at rest, the shoulder at z = L.
+  SpatialRodLoad load;
+  load.clamp_position_mm = {0, 0, rod.layout().s.back()};
+  load.gravity_m_s2 = spec.gravity_m_s2;
+  load.tip_mass_kg = spec.tip_mass_kg;
+  for (const RodPiece& piece : arm.pieces) {
+    const int segment = static_cast<int>(load.chamber_pressure_kPa.size()) / 2;  // pieces alternate connector, segment
+    if (piece.kind == RodPiece::Kind::connector) load.chamber_pressure_kPa.push_back({0, 0, 0});
+    else load.chamber_pressure_kPa.push_back({spec.chamber_pressure_kPa[3 * segment], spec.chamber_pressure_kPa[3 * segment + 1],
+                                              spec.chamber_pressure_kPa[3 * segment + 2]});
+  }
+  const int tip = rod.node_count() - 1;
+  ReducedSplResult out;
+  const int steps = std::max<int>(8, static_cast<int>(spec.output_levels.size()));
+  out.final_state = rod.follow(load, steps, [&](double f, const SpatialRodState& s) {
+    out.curve.push_back({f, s.position.back(), rod.tilt_deg(s, load, tip), s.newton_iterations});
+  });
+  const SpatialRodState& s = out.final_state;
+  if (!s.position.empty()) {
+    // Pose of node j relative to rest (every node's rest frame is the clamp's).
+    const auto pose = [&](int j) {
+      return FacePose{s.position[j], s.frame[j] * load.clamp_frame.transpose(), rod.tilt_deg(s, load, j)};
+    };
+    for (int n = 1; n <= 3; ++n) {
+      const int piece = 2 * n - 1;
+      int first = -1, last = -1;
+      for (int j = 0; j <= tip; ++j)
+        if (rod.layout().nodes[j].piece == piece) {
+          if (first < 0) first = j;
+          last = j;
+        }
+      const std::string segment = "segment " + std::to_string(n);
+      out.joints.push_back({segment + " top" + (n == 1 ? " (shoulder connector)" : ""), pose(first)});
+      out.joints.push_back({segment + " bottom" + (n == 3 ? " (tip)" : ""), pose(last)});
+      out.segment_extremes[n - 1] = rod.extremes(s, load, piece);
+    }
+  }
+  out.part_masses = rod.layout().masses;
+  out.mass_kg = rod.mass_kg();
+  out.nodes = rod.node_count();
+  out.seconds = since(t0);
+  return out;
+}
+
+}  // namespace softarm::fem

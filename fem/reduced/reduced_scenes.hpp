@@ -6,12 +6,16 @@
 //        (the FEM-calibrated factor needs the FEM itself; README, reduced model);
 //   tca: the 3CA as one rod piece, top clamped, chambers 2 and 3 at equal
 //        pressure and gravity in the x–z plane (the rod is planar: anything else
-//        is refused with the field named).
+//        is refused with the field named);
+//   spl:  the arm as the spatial rod of spatial_rod.hpp (any pressures, gravity
+//        in any direction, a tip mass): the tip's path and every joint's pose.
 #include <string>
 #include <vector>
 
 #include "fem/reduced/arm_rod.hpp"
+#include "fem/reduced/spatial_rod.hpp"
 #include "fem/scenes/rra_scene.hpp"
+#include "fem/scenes/spl_scene.hpp"
 #include "fem/scenes/tca_scene.hpp"
 
 namespace softarm::fem {
@@ -33,5 +37,18 @@ struct ReducedTcaResult {
 };
 /// `nodes`: rod nodes along the 3CA (17 by default: converged to 0.1 % on the thesis 3CA, README).
 ReducedTcaResult run_reduced_tca(const TcaSceneSpec& spec, int nodes = 17);
+
+struct ReducedSplResult {
+  std::vector<SplState> curve;          // every continuation step of the pressures (load fraction, tip, tilt)
+  std::vector<SplJoint> joints;         // at the final state, named and ordered as the FEM's
+  SpatialRodState final_state;          // converged=false: the path stopped (diagnosis inside)
+  std::array<PieceExtremes, 3> segment_extremes;  // fibre extremes per segment at the final state
+  RodPartMasses part_masses;
+  double mass_kg = 0, seconds = 0;
+  int nodes = 0;
+};
+/// `nodes_per_segment`: rod nodes along each 3CA segment; `cells`: cells across each section
+/// (the defaults put the thesis pose within 0.1 % of the finest; README, reduced model).
+ReducedSplResult run_reduced_spl(const SplSceneSpec& spec, int nodes_per_segment = 17, int cells = 24);
 
 }  // namespace softarm::fem

@@ -253,14 +253,7 @@ SceneConfig read_scene_config(const nlohmann::json& document) {
       throw InputError("model.fidelity", "the fidelity ladder picks mesh.level, mesh.element_order and "
                                          "mesh.serendipity: give either those or model.fidelity / "
                                          "model.target_error_percent");
-    config.selection = select_model(config.scene, *request.target_error_percent);
-    config.selection->reason = request.asked + ": " + config.selection->reason;
-    config.reduced = config.selection->level.reduced;
-    if (!config.reduced) {
-      config.mesh_level() = config.selection->level.mesh_level;
-      config.element_order() = config.selection->level.element_order;
-      config.tca.serendipity = config.spl.serendipity = config.selection->level.serendipity;
-    }
+    apply_fidelity(config, *request.target_error_percent, request.asked);
   }
   auto output = root.object("output", "where results go");
   config.output.directory = output.string("directory", "out/" + config.scene, "output directory (created if absent)");
@@ -269,6 +262,17 @@ SceneConfig read_scene_config(const nlohmann::json& document) {
   root.string("description", "", "free text");
   root.finish();
   return config;
+}
+
+void apply_fidelity(SceneConfig& config, double target_error_percent, const std::string& asked) {
+  config.selection = select_model(config.scene, target_error_percent);
+  config.selection->reason = asked + ": " + config.selection->reason;
+  config.reduced = config.selection->level.reduced;
+  if (!config.reduced) {
+    config.mesh_level() = config.selection->level.mesh_level;
+    config.element_order() = config.selection->level.element_order;
+    config.tca.serendipity = config.spl.serendipity = config.selection->level.serendipity;
+  }
 }
 
 SceneConfig load_scene_config(const std::string& file_name) { return read_scene_config(fem::load_json_file(file_name)); }

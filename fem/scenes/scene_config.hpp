@@ -38,5 +38,8 @@ struct SceneConfig {
 /// Reads a scene file (the whole document); throws InputError naming the field.
 SceneConfig read_scene_config(const nlohmann::json& document);
 SceneConfig load_scene_config(const std::string& file_name);
+/// Lets the fidelity ladder pick the model (mesh level, element, or the rod) for a target
+/// error; `asked` says who asked ("fidelity 'fast'", "--fidelity fast"), for the reason printed.
+void apply_fidelity(SceneConfig& config, double target_error_percent, const std::string& asked);
 
 }  // namespace softarm::engine
