@@ -119,6 +119,22 @@ TEST_CASE("chamber-volume control follows the ballooning tube past its pressure 
   CHECK(c.path.reached_pressure_kPa == Approx(r.path.estimated_limit_pressure_kPa).epsilon(2e-4));
 }
 
+TEST_CASE("where dp/dV is blind to it, the tangent's lowest mode finds the limit point", "[rra][limit]") {
+  // The ballooning tube again, with the dp/dV test switched off (a threshold it never reaches),
+  // as for a long 3CA whose few ballooning gaps barely change the loaded volume: pressure control
+  // stalls just below the maximum, and the lowest eigenvalue of the tangent, collapsed there
+  // against its value at rest, must name it a limit point.
+  const auto nh = test::material(std::make_shared<NeoHookean>(0.1153 / 2, VolumetricPolynomial({0.7029})), 1.08);
+  auto spec = plain_tube(nh, 60.0);
+  spec.path.limit.stiffness_fraction = 1e-9;
+  const auto r = run_rra_scene(spec);
+  INFO(r.path.diagnosis << "\nlowest eigenvalue / rest: " << r.path.lowest_eigenvalue_ratio);
+  CHECK(r.path.outcome == PathOutcome::limit_point);
+  CHECK(r.path.diagnosis.find("local limit point") != std::string::npos);
+  CHECK(r.path.lowest_eigenvalue_ratio < spec.path.limit.lowest_mode_fraction);
+  CHECK(r.path.reached_pressure_kPa == Approx(30.651).epsilon(2e-3));  // volume control's maximum (README)
+}
+
 TEST_CASE("the Ogden tube that CalculiX stalls on near 56 kPa is carried on", "[rra][limit]") {
   const auto r = run_rra_scene(plain_tube(builtin_material("dragon_skin_30", "test"), 80.0));
   INFO(r.path.diagnosis);
@@ -138,6 +154,9 @@ TEST_CASE("a solver that gives up early reports a stall, not a burst", "[rra][li
   CHECK(r.path.reached_pressure_kPa > 0.0);  // it made progress before stalling (5.2 kPa)
   CHECK(r.path.reached_pressure_kPa < 206.8);
   CHECK(r.path.diagnosis.find("not a limit point") != std::string::npos);
+  // Nor is the tangent near an instability anywhere: its lowest mode is as stiff as at rest.
+  INFO("lowest eigenvalue / rest: " << r.path.lowest_eigenvalue_ratio);
+  CHECK(r.path.lowest_eigenvalue_ratio > 0.5);
   REQUIRE_FALSE(r.curve.empty());
   CHECK(r.curve.back().pressure_kPa == Approx(r.path.reached_pressure_kPa));  // the last state reached is reported
   for (const auto& p : r.curve) CHECK(std::isfinite(p.extension_mm));

@@ -8,6 +8,7 @@
 #include "fem/forms/elastic_form.hpp"
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/load_stepper.hpp"
+#include "fem/solver/lowest_modes.hpp"
 #include "support/test_problems.hpp"
 
 using namespace softarm;
@@ -146,4 +147,39 @@ TEST_CASE("a singular matrix is reported and its solve is NaN instead of a crash
   const Eigen::VectorXd x = solver.solve(Eigen::VectorXd::Ones(2));
   CHECK(x.size() == 2);
   CHECK(std::isnan(x[0]));
+}
+
+TEST_CASE("subspace iteration finds the lowest eigenpairs of the free dofs, as a dense solver does", "[solver]") {
+  // A spring chain with varying stiffness (a soft spot in the middle: a localised lowest mode),
+  // dofs 0 and 40 prescribed with identity rows, as the assembly leaves them.
+  const int n = 41;
+  std::vector<Eigen::Triplet<double>> t;
+  std::vector<char> prescribed(n, 0);
+  prescribed[0] = prescribed[n - 1] = 1;
+  for (int i = 0; i + 1 < n; ++i) {
+    const double k = (i == 20 || i == 21) ? 0.05 : 10.0 + i;  // node 21 hangs between two soft springs
+    for (auto [a, b, v] : {std::tuple{i, i, k}, {i + 1, i + 1, k}, {i, i + 1, -k}, {i + 1, i, -k}})
+      if (!prescribed[a] && !prescribed[b]) t.emplace_back(a, b, v);
+  }
+  t.emplace_back(0, 0, 1.0);
+  t.emplace_back(n - 1, n - 1, 1.0);
+  Eigen::SparseMatrix<double> K(n, n);
+  K.setFromTriplets(t.begin(), t.end());
+  LinearSolver solver;
+  REQUIRE(solver.factorize(K) == LinearSolver::Status::positive_definite);
+  const LowestModes m = lowest_modes(solver, K, prescribed, 2, 200, 1e-12);
+  REQUIRE(m.converged);
+  const Eigen::MatrixXd free = Eigen::MatrixXd(K).block(1, 1, n - 2, n - 2);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> dense(free);
+  for (int j = 0; j < 2; ++j) {
+    CHECK(m.eigenvalues[j] == Approx(dense.eigenvalues()[j]).epsilon(1e-9));
+    CHECK(std::abs(m.modes[j].segment(1, n - 2).dot(dense.eigenvectors().col(j))) == Approx(1.0).epsilon(1e-6));
+    CHECK(m.modes[j][0] == 0.0);  // exactly: prescribed dofs stay out of the modes
+  }
+  // The lowest mode moves node 21 and little else.
+  const ModeExtent e = mode_extent(m.modes[0], 1);
+  CHECK(e.peak_node == 21);
+  CHECK(e.participation < 0.25);  // a chain-wide mode would have ~0.6
+  Eigen::VectorXd uniform = Eigen::VectorXd::Ones(n);
+  CHECK(mode_extent(uniform, 1).participation == Approx(1.0));
 }

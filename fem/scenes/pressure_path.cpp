@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "fem/core/number_text.hpp"
+#include "fem/solver/lowest_modes.hpp"
 #include "fem/solver/volume_control.hpp"
 
 namespace softarm::fem {
@@ -41,6 +42,26 @@ double pv_stiffness(const EnergyProblem& problem, const LoadedVolume& chamber, L
 }
 
 std::string fmt(double v, int precision = 4) { return number_text(v, precision); }
+
+/// The lowest eigenvalue of the tangent at `x` (loads as they are), from a fresh factorisation;
+/// 0 when the tangent is not positive definite there.
+LowestModes lowest_mode_at(const EnergyProblem& problem, LinearSolver& solver, const Vector& x) {
+  const Evaluation e = problem.evaluate(x, false, true);
+  if (!e.status.ok || solver.factorize(e.hessian) != LinearSolver::Status::positive_definite) {
+    LowestModes none;
+    none.eigenvalues = {0.0};
+    none.modes = {Vector::Zero(x.size())};
+    return none;
+  }
+  return lowest_modes(solver, e.hessian, problem.is_prescribed(), 1);
+}
+
+/// "z = 84.2 mm, 11.3 mm from the axis" for node `node` of the reference positions.
+std::string node_location(const Vector& X, int node, int dimension) {
+  if (dimension == 2) return "r = " + fmt(X[2 * node], 3) + " mm, z = " + fmt(X[2 * node + 1], 3) + " mm";
+  const double r = std::hypot(X[3 * node], X[3 * node + 1]);
+  return "z = " + fmt(X[3 * node + 2], 3) + " mm, " + fmt(r, 3) + " mm from the axis";
+}
 }  // namespace
 
 PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::vector<const ChamberPressureForm*>& chambers,
@@ -86,6 +107,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
       return out;
     }
   }
+  const Vector x_rest = x;  // the reference for the lowest-mode check at a stall
   {
     const Evaluation e0 = problem.evaluate(x, true, true);
     solver.factorize(e0.hessian);
@@ -130,6 +152,34 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
   const double ratio = last.pv_stiffness_kPa_per_mm3 / k0;
   const bool flattened = ratio < spec.limit.stiffness_fraction || !last.tangent_positive_definite;
   const bool flattening = ratio < 5 * spec.limit.stiffness_fraction;
+  // A stall with the loaded volume still stiff: is the tangent's lowest mode collapsing somewhere?
+  std::string mode_note;
+  if (!flattening && spec.limit.check_lowest_mode && out.history.size() >= 2) {
+    const double level = last.pressure_kPa / spec.max_pressure_kPa;
+    const LowestModes now = lowest_mode_at(problem, solver, x);
+    set_pressures(0.0);
+    load.dirichlet_scale = 0.0;
+    const LowestModes rest = lowest_mode_at(problem, solver, x_rest);
+    set_pressures(level);
+    load.dirichlet_scale = level;
+    if (rest.eigenvalues[0] > 0) {
+      out.lowest_eigenvalue_ratio = std::max(0.0, now.eigenvalues[0] / rest.eigenvalues[0]);
+      mode_note = " The tangent's lowest eigenvalue is " + fmt(100 * out.lowest_eigenvalue_ratio, 3) +
+                  " % of its value at rest";
+      if (spec.node_dimension > 0 && now.eigenvalues[0] > 0) {
+        const ModeExtent e = mode_extent(now.modes[0], spec.node_dimension);
+        out.lowest_mode_participation = e.participation;
+        mode_note += "; its mode moves " + fmt(100 * e.participation, 2) + " % of the nodes, most at " +
+                     node_location(problem.reference_positions(), e.peak_node, spec.node_dimension);
+      }
+      // Sufficient, not necessary: a stiff local mode (a wall between two rings) can be failing while
+      // a softer global one (the 3CA's bending) is still the lowest.
+      if (out.lowest_eigenvalue_ratio >= spec.limit.lowest_mode_fraction)
+        mode_note += ", so the last converged state is stable in its softest mode";
+      mode_note += ".";
+    }
+  }
+  const bool local_instability = out.lowest_eigenvalue_ratio > 0 && out.lowest_eigenvalue_ratio < spec.limit.lowest_mode_fraction;
   if ((flattened || flattening) && spec.limit.follow_with_volume_control && out.history.size() >= 2) {
     // Past the pressure maximum by prescribing the chamber volume instead.
     const PressureState& prev = out.history[out.history.size() - 2];
@@ -181,6 +231,15 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
                     (last.tangent_positive_definite ? "" : ", tangent no longer positive definite") +
                     "); estimated peak pressure " + fmt(out.estimated_limit_pressure_kPa) +
                     " kPa. Pressure control cannot pass it; this is the burst mode of this design." + volume_note;
+  } else if (local_instability) {
+    out.outcome = PathOutcome::limit_point;
+    out.estimated_limit_pressure_kPa = last.pressure_kPa;
+    out.diagnosis = "local limit point at " + fmt(last.pressure_kPa) + " kPa: pressure control stopped (" +
+                    to_string(out.path.failure) + ") where the tangent's lowest mode has lost almost all its "
+                    "stiffness, while dp/dV of the loaded volume, " + fmt(100 * ratio, 3) +
+                    " % of its initial value, is above the limit-point threshold: an instability the loaded volume "
+                    "barely shows (in a 3CA, a chamber wall ballooning between two rings). The burst pressure is at "
+                    "or just above this one." + mode_note;
   } else {
     out.outcome = PathOutcome::stalled;
     // Well above the threshold the path is plainly not at a limit point; close to it,
@@ -191,7 +250,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
                                   "just ahead, but none was reached. "
                                 : ", so this is not a limit point. ") +
                     "Retry with a finer mesh, a smaller solver.initial_increment_fraction or more Newton iterations." +
-                    volume_note;
+                    mode_note + volume_note;
   }
   return out;
 }

@@ -6,8 +6,10 @@
 // dp/dV = 1 / (∇Vᵀ K⁻¹ ∇V) is computed from the tangent (one extra solve).
 // Under pressure control a limit point (ballooning) shows as dp/dV → 0 and
 // the tangent losing positive definiteness; a Newton failure with dp/dV still
-// well above zero is a stall (numerical), not a burst. The two are reported
-// differently: a stall is never passed off as a physical limit.
+// well above zero is a stall (numerical), not a burst, unless the tangent's
+// lowest eigenvalue has collapsed there (a local instability that the loaded
+// volume barely shows: LimitPointSettings::check_lowest_mode). The two are
+// reported differently: a stall is never passed off as a physical limit.
 #include <functional>
 #include <string>
 #include <vector>
@@ -37,6 +39,12 @@ struct LimitPointSettings {
   /// Where pressure control stops at (or near) a limit point, follow the path past it by
   /// chamber-volume control (fem/solver/volume_control.hpp) to locate the pressure maximum.
   bool follow_with_volume_control = true;
+  /// Where pressure control stalls with dp/dV still high, compare the tangent's lowest
+  /// eigenvalue with its value at rest (fem/solver/lowest_modes.hpp): one that has fallen below
+  /// lowest_mode_fraction of it is a local instability (a wall ballooning between rings) that the
+  /// loaded volume does not show. Costs two factorisations and a few dozen solves, at a stall only.
+  bool check_lowest_mode = true;
+  double lowest_mode_fraction = 0.05;
 };
 
 struct PressurePathResult {
@@ -48,6 +56,9 @@ struct PressurePathResult {
   PathResult path;
   std::vector<PressureState> history;  // every converged step under pressure control
   std::vector<PressureState> beyond_limit;  // volume control's states past the last one (pressure rises, then falls)
+  /// At a stall (check_lowest_mode): the tangent's lowest eigenvalue at the last converged state
+  /// over its value at rest (0: not computed), and the share of nodes its mode moves.
+  double lowest_eigenvalue_ratio = 0.0, lowest_mode_participation = 0.0;
   // Linear-algebra cost of the whole path (for benchmarks).
   double analyse_s = 0.0, factorize_s = 0.0, solve_s = 0.0;
   int factorizations = 0, lu_fallbacks = 0;  // LU: the tangent was indefinite
@@ -64,6 +75,9 @@ struct PressurePathSpec {
   bool gravity_preload = false;
   double max_pressure_kPa = 0.0;
   std::vector<double> output_pressures_kPa;  // sorted, the last equals max_pressure_kPa
+  /// Coordinates per node: 2 for the axisymmetric (r, z), 3 for solids with z along the axis;
+  /// 0 leaves the location of an unstable mode out of the diagnosis.
+  int node_dimension = 0;
   NewtonSettings newton;
   StepSettings steps;
   LimitPointSettings limit;

@@ -103,7 +103,9 @@ RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress) {
   const double sign = spec.design.fixed_end == RraDesign::FixedEnd::top ? -1.0 : 1.0;
   Vector x = problem.reference_positions();
   const auto t_solve = Clock::now();
-  out.path = run_pressure_path(problem, {chamber.get()}, load, x, spec.path, [&](const PressureState& s, const Vector& xs) {
+  PressurePathSpec path = spec.path;
+  path.node_dimension = 2;  // (r, z)
+  out.path = run_pressure_path(problem, {chamber.get()}, load, x, path, [&](const PressureState& s, const Vector& xs) {
     if (!s.is_output) return;
     out.curve.push_back(curve_point(s, mesh, *elastic, xs, free_node, sign));
     if (progress) progress(out.curve.back());

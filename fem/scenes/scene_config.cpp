@@ -56,6 +56,11 @@ void read_solver(JsonReader solver, fem::NewtonSettings& nw, fem::StepSettings& 
   limit.stiffness_fraction =
       solver.number("limit_point_stiffness_fraction", limit.stiffness_fraction, Range::open(0, 1),
                     "a failed step with dp/dV below this fraction of its initial value is reported as a limit point");
+  limit.lowest_mode_fraction = solver.number(
+      "lowest_mode_fraction", limit.lowest_mode_fraction, Range::closed(0, 1),
+      "at a stall with dp/dV above the threshold, the tangent's lowest eigenvalue below this fraction of its value at "
+      "rest is reported as a (local) limit point; 0 skips the check (two factorisations and a few dozen solves)");
+  limit.check_lowest_mode = limit.lowest_mode_fraction > 0;
   solver.finish();
 }
 

@@ -87,6 +87,7 @@ SplResult run_spl_scene(const SplSceneSpec& spec, const std::function<void(const
   path.newton = spec.newton;
   path.steps = spec.steps;
   path.limit = spec.limit;
+  path.node_dimension = 3;
   Vector x = X;
   const auto t_solve = Clock::now();
   const auto state_of = [&](const PressureState& s, const Vector& xs) {

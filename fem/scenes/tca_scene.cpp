@@ -132,6 +132,7 @@ TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
   path.newton = spec.newton;
   path.steps = spec.steps;
   path.limit = spec.limit;
+  path.node_dimension = 3;
   Vector x = problem.reference_positions();
   const auto t_solve = Clock::now();
   out.path = run_pressure_path(problem, chambers.loaded, load, x, path, [&](const PressureState& s, const Vector& xs) {
