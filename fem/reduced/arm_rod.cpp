@@ -121,7 +121,11 @@ RodState ArmRod::solve(const RodLoad& load, const RodState* start) const {
     }
     m0 += cross(length_mm() * tx, length_mm() * tz, load.tip_mass_kg * gx, load.tip_mass_kg * gz);
   }
-  if (start) st = *start;
+  if (start) {
+    st = *start;  // its shape is the warm start; its verdict is not ours
+    st.converged = false;
+    st.diagnosis.clear();
+  }
   double f0 = shoot(m0, load, st, failure);
   if (!std::isfinite(f0)) {
     st.diagnosis = "section failure: " + failure;

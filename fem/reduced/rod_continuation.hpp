@@ -11,6 +11,8 @@
 #include <string>
 #include <utility>
 
+#include "fem/core/number_text.hpp"
+
 namespace softarm::fem {
 
 template <class State, class Solve>
@@ -32,7 +34,8 @@ State follow_rod_load(bool has_weight, int steps, const Solve& solve,
       } else if ((step *= 0.5) < 1.0 / (64.0 * count)) {
         if (!have) state = trial;
         state.converged = false;
-        state.diagnosis = (gravity_stage ? "under gravity alone: " : "at " + std::to_string(done) + " of the pressure: ") +
+        state.diagnosis = (gravity_stage ? "under gravity alone: "
+                                         : "beyond " + number_text(100 * done, 3) + " % of the pressures: ") +
                           trial.diagnosis;
         return false;
       }

@@ -149,7 +149,11 @@ SpatialRodState SpatialRod::solve(const SpatialRodLoad& load, const SpatialRodSt
     m0 += (layout_.s.back() * axis).cross(load.tip_mass_kg * load.gravity_m_s2);
   }
   SpatialRodState st;
-  if (start) st = *start;
+  if (start) {
+    st = *start;  // its shape is the warm start; its verdict is not ours
+    st.converged = false;
+    st.diagnosis.clear();
+  }
   std::string failure;
   Vec3 f0 = shoot(m0, load, st, failure);
   if (!f0.allFinite()) {
