@@ -188,17 +188,24 @@ int main(int argc, char** argv) {
   sl.chamber_pressure_kPa = {{200, 100, 0}};
   sl.clamp_position_mm = {0, 0, cut.tca.design.actuator.length_mm};
   std::vector<fem::SpatialRodState> rod_states;
+  std::vector<double> rod_pressure;
   const auto t4 = Clock::now();
-  spatial.follow(sl, 4, [&](double, const fem::SpatialRodState& st) { rod_states.push_back(st); });
+  spatial.follow(sl, 4, [&](double f, const fem::SpatialRodState& st) {
+    rod_states.push_back(st);
+    rod_pressure.push_back(200 * f);
+  });
   const double rod_s = since(t4);
   std::printf("32 mm 3CA, chambers 1, 2 at 200, 100 kPa: 3D %s (%d dofs, %s) %.1f s; spatial rod %.3f s\n",
               fem3d.element_name.c_str(), fem3d.dofs, fem3d.model.name.c_str(), fem3d_s, rod_s);
   std::printf("  chamber1_kPa  fem_deg  rod_deg  fem_azimuth_deg  rod_azimuth_deg  fem_tip_u_mm  rod_tip_u_mm\n");
   const int tip = spatial.node_count() - 1;
-  for (std::size_t i = 0; i < rod_states.size() && i < fem3d.curve.size(); ++i) {
-    const Eigen::Vector3d uf = fem3d.curve[i].tip_displacement_mm, ur = rod_states[i].position.back();
-    std::printf("  %12.1f  %7.3f  %7.3f  %15.2f  %15.2f  %12.3f  %12.3f\n", fem3d.curve[i].pressure_kPa,
-                fem3d.curve[i].bending_angle_deg, spatial.tilt_deg(rod_states[i], sl, tip),
+  for (const fem::TcaState& f : fem3d.curve) {
+    std::size_t i = 0;
+    while (i < rod_states.size() && std::abs(rod_pressure[i] - f.pressure_kPa) > 1e-6) ++i;
+    if (i == rod_states.size()) continue;  // the rest state, or a pressure the rod did not stop at
+    const Eigen::Vector3d uf = f.tip_displacement_mm, ur = rod_states[i].position.back();
+    std::printf("  %12.1f  %7.3f  %7.3f  %15.2f  %15.2f  %12.3f  %12.3f\n", f.pressure_kPa,
+                f.bending_angle_deg, spatial.tilt_deg(rod_states[i], sl, tip),
                 std::atan2(uf.y(), uf.x()) * 180 / M_PI, std::atan2(ur.y(), ur.x()) * 180 / M_PI, uf.norm(), ur.norm());
   }
   return 0;

@@ -25,6 +25,13 @@ ArmRodSpec thesis_3ca_spec(int nodes) {
   return spec;
 }
 
+SplDesign thesis_spl_design() {
+  nlohmann::json geometry = {{"wall_thickness_normalised", 0.466}, {"end_cap_thickness_normalised", 0.25},
+                             {"ring_count_normalised", 0.375}, {"ring_thickness_normalised", 0.4}};
+  JsonReader reader(geometry, "geometry");
+  return read_spl_design(reader);
+}
+
 // ∫ ξ ξᵀ dA over both materials.
 Eigen::Matrix2d second_moments(const CellSection& s) {
   Eigen::Matrix2d i = Eigen::Matrix2d::Zero();
@@ -129,10 +136,7 @@ TEST_CASE("the reduced SPL in one plane poses the arm as the planar rod does", "
   SplSceneSpec spec;
   spec.tube_material = spec.sheath_material = builtin_material("dragon_skin_30", "test");
   spec.ring_material = spec.connector_material = builtin_material("digital_abs", "test");
-  nlohmann::json geometry = {{"wall_thickness_normalised", 0.466}, {"end_cap_thickness_normalised", 0.25},
-                             {"ring_count_normalised", 0.375}, {"ring_thickness_normalised", 0.4}};
-  JsonReader reader(geometry, "geometry");
-  spec.design = read_spl_design(reader);
+  spec.design = thesis_spl_design();
   spec.chamber_pressure_kPa = {0, 150, 150, 0, 150, 150, 0, 150, 150};
   const ReducedSplResult spatial = run_reduced_spl(spec);
   REQUIRE(spatial.final_state.converged);
@@ -162,4 +166,40 @@ TEST_CASE("the reduced SPL in one plane poses the arm as the planar rod does", "
   CHECK(spatial.mass_kg == Approx(planar.mass_kg()).epsilon(1e-12));
   // The joints follow the arm from the shoulder: segment 1's top is the shoulder connector's bottom.
   CHECK(spatial.joints.front().pose.position_mm.z() == Approx(length - spec.design.connector_thickness_mm).epsilon(1e-3));
+}
+
+TEST_CASE("both rods stop unconverged past their limit, never with a half-integrated shape", "[reduced][spatial]") {
+  // A Dragon Skin 10 arm carrying 0.5 kg at its tip, pressurised to 600 kPa: the rods find no
+  // equilibrium early on and must stop with a diagnosis. Before the fix, a solve warm-started from a
+  // converged state inherited its 'converged' flag, so a failed step came back converged, with the
+  // shape integrated only up to the failing section (the spatial rod's tip left at the shoulder).
+  ArmRodSpec spec = thesis_3ca_spec(17);
+  spec.tube = spec.sheath = builtin_material("dragon_skin_10", "test");
+  spec.pieces = spl_rod_pieces(thesis_spl_design(), spec.rings);
+  std::vector<std::array<double, 3>> pressures;
+  for (const RodPiece& piece : spec.pieces)
+    pressures.push_back(piece.kind == RodPiece::Kind::connector ? std::array<double, 3>{0, 0, 0}
+                                                                : std::array<double, 3>{0, 600, 600});
+  const ArmRod planar(spec);
+  RodLoad pl;
+  pl.chamber_pressure_kPa = pressures;
+  pl.gravity_m_s2 = {0, -9.80665};
+  pl.tip_mass_kg = 0.5;
+  const RodState ps = planar.follow(pl, 8);
+  INFO("planar: " << ps.diagnosis);
+  CHECK_FALSE(ps.converged);
+  CHECK((ps.diagnosis.find("limit point") != std::string::npos || ps.diagnosis.find("section failure") != std::string::npos));
+
+  const SpatialRod spatial(spec);
+  SpatialRodLoad sl;
+  sl.chamber_pressure_kPa = pressures;
+  sl.gravity_m_s2 = {0, 0, -9.80665};
+  sl.tip_mass_kg = 0.5;
+  const SpatialRodState ss = spatial.follow(sl, 8);
+  INFO("spatial: " << ss.diagnosis);
+  CHECK_FALSE(ss.converged);
+  CHECK((ss.diagnosis.find("limit point") != std::string::npos || ss.diagnosis.find("section failure") != std::string::npos));
+  // What is returned is the last converged state: hanging, its tip a full arm's length below the clamp.
+  REQUIRE_FALSE(ss.position.empty());
+  CHECK(ss.position.back().z() < -550);
 }
