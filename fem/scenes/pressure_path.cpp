@@ -152,6 +152,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
   const double ratio = last.pv_stiffness_kPa_per_mm3 / k0;
   const bool flattened = ratio < spec.limit.stiffness_fraction || !last.tangent_positive_definite;
   const bool flattening = ratio < 5 * spec.limit.stiffness_fraction;
+  const bool try_volume_control = ratio < spec.limit.volume_control_fraction;
   // A stall with the loaded volume still stiff: is the tangent's lowest mode collapsing somewhere?
   std::string mode_note;
   if (!flattening && spec.limit.check_lowest_mode && out.history.size() >= 2) {
@@ -180,7 +181,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
     }
   }
   const bool local_instability = out.lowest_eigenvalue_ratio > 0 && out.lowest_eigenvalue_ratio < spec.limit.lowest_mode_fraction;
-  if ((flattened || flattening) && spec.limit.follow_with_volume_control && out.history.size() >= 2) {
+  if ((flattened || try_volume_control) && spec.limit.follow_with_volume_control && out.history.size() >= 2) {
     // Past the pressure maximum by prescribing the chamber volume instead.
     const PressureState& prev = out.history[out.history.size() - 2];
     double level = last.pressure_kPa / spec.max_pressure_kPa;

@@ -56,6 +56,10 @@ void read_solver(JsonReader solver, fem::NewtonSettings& nw, fem::StepSettings& 
   limit.stiffness_fraction =
       solver.number("limit_point_stiffness_fraction", limit.stiffness_fraction, Range::open(0, 1),
                     "a failed step with dp/dV below this fraction of its initial value is reported as a limit point");
+  limit.volume_control_fraction = solver.number(
+      "volume_control_stiffness_fraction", limit.volume_control_fraction, Range::closed(0, 1),
+      "where pressure control fails with dp/dV below this fraction of its initial value, chamber-volume control "
+      "follows the path from there to find a pressure maximum (ballooning); 1: at every stall");
   limit.lowest_mode_fraction = solver.number(
       "lowest_mode_fraction", limit.lowest_mode_fraction, Range::closed(0, 1),
       "at a stall with dp/dV above the threshold, the tangent's lowest eigenvalue below this fraction of its value at "
