@@ -82,14 +82,16 @@ int simulate_reduced(const fem::SceneConfig& config) {
   if (r.target_pressure_kPa) std::cout << "at " << *r.target_pressure_kPa << " kPa";
   else std::cout << "not reached";
   std::cout << " (rod, " << r.nodes << " nodes, " << r.seconds << " s)\n";
-  if (!r.final_state.converged) std::cout << "outcome: stopped — " << r.final_state.diagnosis << "\n";
+  if (r.spatial) std::cout << "(the loads leave the x–z plane: the spatial rod)\n";
+  if (!r.converged) std::cout << "outcome: stopped — " << r.diagnosis << "\n";
   write_json_file(config.output.directory, "summary.json",
                   {{"scene", "tca"}, {"model", model_json(config)}, {"pressure_kPa", r.pressure_kPa},
                    {"bending_deg", r.bending_deg},
                    {"target_pressure_kPa", r.target_pressure_kPa ? nlohmann::json(*r.target_pressure_kPa) : nlohmann::json()},
-                   {"mass_kg", r.mass_kg}, {"seconds", r.seconds}});
+                   {"rod", r.spatial ? "spatial" : "planar"}, {"outcome", r.converged ? "completed" : "stopped"},
+                   {"diagnosis", r.diagnosis}, {"mass_kg", r.mass_kg}, {"seconds", r.seconds}});
   std::cout << "written: " << config.output.directory << "/curve.csv, " << config.output.directory << "/summary.json\n";
-  return r.final_state.converged ? 0 : 1;
+  return r.converged ? 0 : 1;
 }
 
 }  // namespace softarm::engine

@@ -99,7 +99,6 @@ json evaluate_rra_rod(const fem::RraSceneSpec& scene) {
 
 json evaluate_tca_rod(const StudySpec& spec, const fem::TcaSceneSpec& scene) {
   const fem::ReducedTcaResult r = fem::run_reduced_tca(scene, spec.rod_nodes);
-  const fem::RodState& st = r.final_state;
   const double p_max = std::max({scene.chamber_pressure_kPa[0], scene.chamber_pressure_kPa[1], scene.chamber_pressure_kPa[2]});
   json out;
   out["curve"] = {{"pressure_kPa", r.pressure_kPa}, {"bending_deg", r.bending_deg}};
@@ -108,14 +107,16 @@ json evaluate_tca_rod(const StudySpec& spec, const fem::TcaSceneSpec& scene) {
   out["mass_g"] = r.mass_kg * 1e3;
   out["reached_pressure_kPa"] = r.pressure_kPa.empty() ? 0.0 : r.pressure_kPa.back();
   out["max_pressure_kPa"] = p_max;
-  out["tip_x_mm"] = st.x.back();
-  out["tip_z_mm"] = st.z.back();
+  if (!r.centreline_mm.empty()) {
+    out["tip_x_mm"] = r.centreline_mm.back().x();
+    out["tip_z_mm"] = r.centreline_mm.back().z();
+  }
   out["tube_max_stretch"] = r.extremes.tube_max_stretch;
   out["sheath_max_stretch"] = r.extremes.sheath_max_stretch;
   double utilisation = std::max(criteria_ab(scene.tube_material, 0, r.extremes.tube_max_stretch, spec.safety_factor),
                                 criteria_ab(scene.sheath_material, 0, r.extremes.sheath_max_stretch, spec.safety_factor));
-  if (!st.converged) {
-    out["diagnosis"] = st.diagnosis;
+  if (!r.converged) {
+    out["diagnosis"] = r.diagnosis;
     if (!r.pressure_kPa.empty() && r.pressure_kPa.back() > 0)
       utilisation = std::max(utilisation, p_max / r.pressure_kPa.back());  // criterion (c)
   }
@@ -125,10 +126,10 @@ json evaluate_tca_rod(const StudySpec& spec, const fem::TcaSceneSpec& scene) {
                 {"half_width_mm", json::array()}};
   const auto& s_ref = r.arc_length_mm;
   const double length = scene.design.actuator.length_mm;
-  for (std::size_t i = 0; i < st.x.size(); ++i) {
+  for (std::size_t i = 0; i < r.centreline_mm.size(); ++i) {
     const double z_ref = length - s_ref[i];  // the clamp is the top face (z = l)
-    shape["x_mm"].push_back(rounded(st.x[i], 1e3));
-    shape["z_mm"].push_back(rounded(st.z[i], 1e3));
+    shape["x_mm"].push_back(rounded(r.centreline_mm[i].x(), 1e3));
+    shape["z_mm"].push_back(rounded(r.centreline_mm[i].z(), 1e3));
     shape["half_width_mm"].push_back(rounded(scene.design.axis_distance(z_ref) +
                                              scene.design.actuator.outer_radius(z_ref) +
                                              scene.design.sheath_thickness_mm, 1e3));

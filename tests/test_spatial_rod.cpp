@@ -203,3 +203,24 @@ TEST_CASE("both rods stop unconverged past their limit, never with a half-integr
   REQUIRE_FALSE(ss.position.empty());
   CHECK(ss.position.back().z() < -550);
 }
+
+TEST_CASE("the reduced 3CA takes the spatial rod where the loads leave the x-z plane", "[reduced][spatial]") {
+  TcaSceneSpec spec;
+  spec.tube_material = spec.sheath_material = builtin_material("dragon_skin_30", "test");
+  spec.ring_material = builtin_material("digital_abs", "test");
+  spec.chamber_pressure_kPa = {0, 200, 200};
+  const ReducedTcaResult in_plane = run_reduced_tca(spec);
+  CHECK_FALSE(in_plane.spatial);
+  REQUIRE(in_plane.converged);
+  // Chambers 1 and 2 at 200 and 100 kPa: their forces' centroid lies at 30° from chamber 1, so the
+  // 3CA bends away from it, towards −150°.
+  spec.chamber_pressure_kPa = {200, 100, 0};
+  const ReducedTcaResult skew = run_reduced_tca(spec);
+  INFO(skew.diagnosis);
+  CHECK(skew.spatial);
+  REQUIRE(skew.converged);
+  const Eigen::Vector3d tip = skew.centreline_mm.back();
+  CHECK(std::atan2(tip.y(), tip.x()) * 180 / kPi == Approx(-150).margin(1.5));
+  CHECK(skew.bending_deg.back() > 20);
+  CHECK(skew.mass_kg == Approx(in_plane.mass_kg).epsilon(1e-12));
+}

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 
-#include "fem/core/input_error.hpp"
 #include "fem/reduced/fibre_law.hpp"
 #include "fem/reduced/rra_calibration.hpp"
 
@@ -28,7 +27,7 @@ ReducedRraResult run_reduced_rra(const RraSceneSpec& spec) {
 }
 
 namespace {
-ArmRod reduced_tca_rod(const TcaSceneSpec& spec, int nodes) {
+ArmRodSpec reduced_tca_rod(const TcaSceneSpec& spec, int nodes) {
   ArmRodSpec rod;
   RodPiece piece;
   piece.design = spec.design;
@@ -37,38 +36,58 @@ ArmRod reduced_tca_rod(const TcaSceneSpec& spec, int nodes) {
   rod.sheath = spec.sheath_material;
   rod.rings = spec.ring_material;
   rod.nodes_per_segment = nodes;
-  return ArmRod(rod);
+  return rod;
 }
 }  // namespace
 
 ReducedTcaResult run_reduced_tca(const TcaSceneSpec& spec, int nodes) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto& pc = spec.chamber_pressure_kPa;
-  if (pc[1] != pc[2] || spec.gravity_m_s2.y() != 0)
-    throw InputError("load", "the reduced (rod) model is planar: it needs chambers 2 and 3 at equal pressure and "
-                             "gravity in the x–z plane; ask for a higher fidelity for this scene");
-  const ArmRod rod = reduced_tca_rod(spec, nodes);
-  RodLoad load;
-  load.chamber_pressure_kPa = {pc};
-  load.gravity_m_s2 = {spec.gravity_m_s2.x(), spec.gravity_m_s2.z()};
   const double p_max = std::max({pc[0], pc[1], pc[2]});
   // Every step is a converged equilibrium, so the count only sets where the curve is sampled:
   // at the scene's (evenly spaced) output pressures, or at least every 1/8 of the load.
   const int steps = std::max<int>(8, static_cast<int>(spec.output_pressures_kPa.size()));
   ReducedTcaResult out;
-  out.final_state = rod.follow(load, steps, [&](double f, const RodState& s) {
-    const double p = f * p_max, angle = rod.tip_rotation(s, load) * kDeg;
+  const auto record = [&](double fraction, double angle) {
+    const double p = fraction * p_max;
     if (!out.target_pressure_kPa && !out.bending_deg.empty() && out.bending_deg.back() < spec.target_bending_deg &&
         angle >= spec.target_bending_deg)
       out.target_pressure_kPa = out.pressure_kPa.back() + (spec.target_bending_deg - out.bending_deg.back()) *
                                                               (p - out.pressure_kPa.back()) / (angle - out.bending_deg.back());
     out.pressure_kPa.push_back(p);
     out.bending_deg.push_back(angle);
-  });
-  out.extremes = rod.extremes(out.final_state, load, 0);
-  out.mass_kg = rod.mass_kg();
-  out.nodes = rod.node_count();
-  out.arc_length_mm = rod.arc_length();
+  };
+  const ArmRodSpec rod_spec = reduced_tca_rod(spec, nodes);
+  out.spatial = pc[1] != pc[2] || spec.gravity_m_s2.y() != 0;
+  if (!out.spatial) {
+    const ArmRod rod(rod_spec);
+    RodLoad load;
+    load.chamber_pressure_kPa = {pc};
+    load.gravity_m_s2 = {spec.gravity_m_s2.x(), spec.gravity_m_s2.z()};
+    const RodState st =
+        rod.follow(load, steps, [&](double f, const RodState& s) { record(f, rod.tip_rotation(s, load) * kDeg); });
+    out.converged = st.converged;
+    out.diagnosis = st.diagnosis;
+    for (std::size_t j = 0; j < st.x.size(); ++j) out.centreline_mm.emplace_back(st.x[j], 0.0, st.z[j]);
+    out.extremes = rod.extremes(st, load, 0);
+    out.mass_kg = rod.mass_kg();
+  } else {
+    const SpatialRod rod(rod_spec);
+    SpatialRodLoad load;
+    load.chamber_pressure_kPa = {pc};
+    load.gravity_m_s2 = spec.gravity_m_s2;
+    const int tip = rod.node_count() - 1;
+    const SpatialRodState st =
+        rod.follow(load, steps, [&](double f, const SpatialRodState& s) { record(f, rod.tilt_deg(s, load, tip)); });
+    out.converged = st.converged;
+    out.diagnosis = st.diagnosis;
+    out.centreline_mm = st.position;
+    out.extremes = rod.extremes(st, load, 0);
+    out.mass_kg = rod.mass_kg();
+  }
+  const RodLayout layout = rod_nodes(rod_spec);
+  out.nodes = static_cast<int>(layout.s.size());
+  out.arc_length_mm = layout.s;
   out.seconds = since(t0);
   return out;
 }

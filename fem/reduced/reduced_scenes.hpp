@@ -1,13 +1,14 @@
 #pragma once
 // The reduced model of the rra and tca scenes (the cheapest rung of the
 // fidelity ladder, fem/scenes/fidelity.hpp): the same scene specs as the FEM
-// runners, answered by the planar rod of arm_rod.hpp.
+// runners, answered by the rods of arm_rod.hpp (planar) and spatial_rod.hpp.
 //   rra: the lone RRA's extension by the rod with an uncalibrated chamber force
 //        (the FEM-calibrated factor needs the FEM itself; README, reduced model);
-//   tca: the 3CA as one rod piece, top clamped, chambers 2 and 3 at equal
-//        pressure and gravity in the x–z plane (the rod is planar: anything else
-//        is refused with the field named);
-//   spl:  the arm as the spatial rod of spatial_rod.hpp (any pressures, gravity
+//   tca: the 3CA as one rod piece, top clamped: by the planar rod where the
+//        loads lie in the x–z plane (chambers 2 and 3 at equal pressure, gravity
+//        with no y part: the measured rung of the fidelity ladder), by the
+//        spatial rod otherwise;
+//   spl: the arm as the spatial rod of spatial_rod.hpp (any pressures, gravity
 //        in any direction, a tip mass): the tip's path and every joint's pose.
 #include <string>
 #include <vector>
@@ -29,7 +30,12 @@ ReducedRraResult run_reduced_rra(const RraSceneSpec& spec);
 struct ReducedTcaResult {
   std::vector<double> pressure_kPa, bending_deg;  // every continuation step, rest excluded
   std::optional<double> target_pressure_kPa;      // where the bending reaches spec.target_bending_deg
-  RodState final_state;                           // converged=false: the path stopped (diagnosis inside)
+  bool converged = false;                         // false: the path stopped short, and `diagnosis` says why
+  std::string diagnosis;
+  bool spatial = false;                           // solved by the spatial rod (loads out of the x–z plane)
+  /// The centreline at the final state, per node, mm: the clamp at the origin, the scene's axes
+  /// (the 3CA hangs along −z at rest; y = 0 for the planar rod).
+  std::vector<Eigen::Vector3d> centreline_mm;
   PieceExtremes extremes;                         // fibre extremes at the final state
   std::vector<double> arc_length_mm;             // reference arc length per node, from the clamp
   double mass_kg = 0, seconds = 0;
