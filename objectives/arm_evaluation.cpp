@@ -161,7 +161,9 @@ ArmMeasures evaluate_arm(const ArmCandidate& c, const EvaluationSettings& s) {
   out.min_bending_deg = 1e300;
   // Each segment's bending path by the rod, then its lone-RRA FEM path, then the criteria along
   // the path. The FEM paths run one after the other: run concurrently they crashed twice in
-  // ~600 designs inside UMFPACK's solve (each path sets OpenBLAS's thread count, a global).
+  // ~600 designs inside UMFPACK's solve (each path sets OpenBLAS's thread count, a global). The
+  // main job later crashed there run sequentially too: LinearSolver's LU kept only a reference to
+  // a tangent that Newton had already freed (fixed there), which may have been the cause both times.
   std::array<std::vector<double>, 3> stretch;
   for (int n = 0; n < 3; ++n) {
     out.segments[n] = bend_segment(c, s, n, stretch[n]);

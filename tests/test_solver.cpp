@@ -183,3 +183,24 @@ TEST_CASE("subspace iteration finds the lowest eigenpairs of the free dofs, as a
   Eigen::VectorXd uniform = Eigen::VectorXd::Ones(n);
   CHECK(mode_extent(uniform, 1).participation == Approx(1.0));
 }
+
+TEST_CASE("an LU solve does not depend on the matrix it was factorised from living on", "[solver]") {
+  // UMFPACK's solve reads the matrix again (iterative refinement) and Eigen keeps only a reference
+  // to it. Newton's tangent is replaced before dp/dV is solved for; a dangling reference crashed
+  // the main job inside umfdi_solve. Here the caller's matrix is changed after factorising: the
+  // solve must still be that of the factorised one.
+  Eigen::SparseMatrix<double> K(3, 3);
+  K.insert(0, 0) = 2.0;
+  K.insert(1, 1) = -1.0;  // indefinite: the LU route
+  K.insert(2, 2) = 3.0;
+  K.insert(0, 1) = K.insert(1, 0) = 0.5;
+  K.makeCompressed();
+  const Eigen::VectorXd b = Eigen::Vector3d(1.0, 2.0, 3.0);
+  const Eigen::VectorXd expected = Eigen::MatrixXd(K).lu().solve(b);
+  LinearSolver solver;
+  REQUIRE(solver.factorize(K) == LinearSolver::Status::indefinite);
+  // Same arrays, values 1 % larger: a solve that still read them would refine towards (1.01 K)⁻¹ b.
+  for (int k = 0; k < K.nonZeros(); ++k) K.valuePtr()[k] *= 1.01;
+  const Eigen::VectorXd x = solver.solve(b);
+  CHECK((x - expected).norm() < 1e-12 * expected.norm());
+}

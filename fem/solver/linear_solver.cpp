@@ -120,11 +120,12 @@ LinearSolver::Status LinearSolver::factorize(const SparseMatrix& K) {
   if (plain_cholesky(K)) return status_ = Status::positive_definite;
   ++lu_fallbacks;
   const auto t0 = std::chrono::steady_clock::now();
+  lu_matrix_ = K;
   if (!lu_analysed_) {
-    lu_.analyzePattern(K);
+    lu_.analyzePattern(lu_matrix_);
     lu_analysed_ = true;
   }
-  lu_.factorize(K);
+  lu_.factorize(lu_matrix_);
   factorize_seconds += seconds_since(t0);
   return status_ = (lu_.info() == Eigen::Success ? Status::indefinite : Status::singular);
 }

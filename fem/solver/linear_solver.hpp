@@ -80,6 +80,11 @@ class LinearSolver {
   Cholesky<Eigen::Lower> cholesky_;
   Cholesky<Eigen::Upper> cholesky_upper_;
   Eigen::UmfPackLU<SparseMatrix> lu_;
+  // UMFPACK's solve reads the factorised matrix again (iterative refinement), and Eigen's
+  // UmfPackLU keeps only a reference to it; the caller's tangent is gone by the time the
+  // solution is wanted (Newton moves on, dp/dV is computed after convergence), so the LU
+  // factorises this copy, which lives as long as the factor.
+  SparseMatrix lu_matrix_;
   bool cholesky_analysed_ = false, lu_analysed_ = false;
   Status status_ = Status::singular;
   bool shifted_ = false;  // the Cholesky factor is of K + σI
