@@ -71,6 +71,7 @@ ReducedTcaResult run_reduced_tca(const TcaSceneSpec& spec, int nodes) {
     for (std::size_t j = 0; j < st.x.size(); ++j) out.centreline_mm.emplace_back(st.x[j], 0.0, st.z[j]);
     out.extremes = rod.extremes(st, load, 0);
     out.mass_kg = rod.mass_kg();
+    out.arc_length_mm = rod.arc_length();
   } else {
     const SpatialRod rod(rod_spec);
     SpatialRodLoad load;
@@ -84,10 +85,9 @@ ReducedTcaResult run_reduced_tca(const TcaSceneSpec& spec, int nodes) {
     out.centreline_mm = st.position;
     out.extremes = rod.extremes(st, load, 0);
     out.mass_kg = rod.mass_kg();
+    out.arc_length_mm = rod.layout().s;
   }
-  const RodLayout layout = rod_nodes(rod_spec);
-  out.nodes = static_cast<int>(layout.s.size());
-  out.arc_length_mm = layout.s;
+  out.nodes = static_cast<int>(out.arc_length_mm.size());
   out.seconds = since(t0);
   return out;
 }

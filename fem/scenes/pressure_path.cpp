@@ -153,34 +153,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
   const bool flattened = ratio < spec.limit.stiffness_fraction || !last.tangent_positive_definite;
   const bool flattening = ratio < 5 * spec.limit.stiffness_fraction;
   const bool try_volume_control = ratio < spec.limit.volume_control_fraction;
-  // A stall with the loaded volume still stiff: is the tangent's lowest mode collapsing somewhere?
-  std::string mode_note;
-  if (!flattening && spec.limit.check_lowest_mode && out.history.size() >= 2) {
-    const double level = last.pressure_kPa / spec.max_pressure_kPa;
-    const LowestModes now = lowest_mode_at(problem, solver, x);
-    set_pressures(0.0);
-    load.dirichlet_scale = 0.0;
-    const LowestModes rest = lowest_mode_at(problem, solver, x_rest);
-    set_pressures(level);
-    load.dirichlet_scale = level;
-    if (rest.eigenvalues[0] > 0) {
-      out.lowest_eigenvalue_ratio = std::max(0.0, now.eigenvalues[0] / rest.eigenvalues[0]);
-      mode_note = " The tangent's lowest eigenvalue is " + fmt(100 * out.lowest_eigenvalue_ratio, 3) +
-                  " % of its value at rest";
-      if (spec.node_dimension > 0 && now.eigenvalues[0] > 0) {
-        const ModeExtent e = mode_extent(now.modes[0], spec.node_dimension);
-        out.lowest_mode_participation = e.participation;
-        mode_note += "; its mode moves " + fmt(100 * e.participation, 2) + " % of the nodes, most at " +
-                     node_location(problem.reference_positions(), e.peak_node, spec.node_dimension);
-      }
-      // Sufficient, not necessary: a stiff local mode (a wall between two rings) can be failing while
-      // a softer global one (the 3CA's bending) is still the lowest.
-      if (out.lowest_eigenvalue_ratio >= spec.limit.lowest_mode_fraction)
-        mode_note += ", so the last converged state is stable in its softest mode";
-      mode_note += ".";
-    }
-  }
-  const bool local_instability = out.lowest_eigenvalue_ratio > 0 && out.lowest_eigenvalue_ratio < spec.limit.lowest_mode_fraction;
+  const Vector x_stall = x;  // volume control moves x; the lowest-mode check looks at the stall
   if ((flattened || try_volume_control) && spec.limit.follow_with_volume_control && out.history.size() >= 2) {
     // Past the pressure maximum by prescribing the chamber volume instead.
     const PressureState& prev = out.history[out.history.size() - 2];
@@ -213,6 +186,36 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
     // No maximum: keep the pressure-controlled diagnosis below, with what volume control saw.
     out.diagnosis = " Volume control from there: " + vc.message + ".";
   }
+  // A stall with the loaded volume still stiff: is the tangent's lowest mode collapsing somewhere?
+  std::string mode_note;
+  if (!flattening && spec.limit.check_lowest_mode && out.history.size() >= 2) {
+    // Only now, past volume control (which settles a limit point without it); its loads are restored after.
+    const double stall_level = last.pressure_kPa / spec.max_pressure_kPa, dirichlet = load.dirichlet_scale;
+    set_pressures(stall_level);
+    const LowestModes now = lowest_mode_at(problem, solver, x_stall);
+    set_pressures(0.0);
+    load.dirichlet_scale = 0.0;
+    const LowestModes rest = lowest_mode_at(problem, solver, x_rest);
+    set_pressures(out.reached_pressure_kPa / spec.max_pressure_kPa);
+    load.dirichlet_scale = dirichlet;
+    if (rest.eigenvalues[0] > 0) {
+      out.lowest_eigenvalue_ratio = std::max(0.0, now.eigenvalues[0] / rest.eigenvalues[0]);
+      mode_note = " The tangent's lowest eigenvalue is " + fmt(100 * out.lowest_eigenvalue_ratio, 3) +
+                  " % of its value at rest";
+      if (spec.node_dimension > 0 && now.eigenvalues[0] > 0) {
+        const ModeExtent e = mode_extent(now.modes[0], spec.node_dimension);
+        out.lowest_mode_participation = e.participation;
+        mode_note += "; its mode moves " + fmt(100 * e.participation, 2) + " % of the nodes, most at " +
+                     node_location(problem.reference_positions(), e.peak_node, spec.node_dimension);
+      }
+      // Sufficient, not necessary: a stiff local mode (a wall between two rings) can be failing while
+      // a softer global one (the 3CA's bending) is still the lowest.
+      if (out.lowest_eigenvalue_ratio >= spec.limit.lowest_mode_fraction)
+        mode_note += ", so the last converged state is stable in its softest mode";
+      mode_note += ".";
+    }
+  }
+  const bool local_instability = out.lowest_eigenvalue_ratio > 0 && out.lowest_eigenvalue_ratio < spec.limit.lowest_mode_fraction;
   const std::string volume_note = out.diagnosis;
   if (flattened) {
     out.outcome = PathOutcome::limit_point;
