@@ -25,6 +25,8 @@
 //                     [--increments 4] [--loose-tol 5e-3]
 //                     [--variants strict,loose,ccx,ccx-tight]   (ratio: time / the first variant's)
 //                     [--elements 27,20]   (softarm's Hex27 and/or Hex20; ccx runs once per mesh)
+//                     [--factorise-every-iteration]   (softarm without its default factor reuse:
+//                      NewtonSettings::reuse_factor, CG on the last Cholesky factor)
 // Medians over --repeat runs are printed (this machine is shared and noisy).
 // "dofs": 3 × nodes, constrained ones included (softarm: Hex27 nodes; ccx: the
 // C3D20 nodes). softarm's time is setup + solve (not meshing; the 3CA's includes
@@ -242,6 +244,7 @@ int main(int argc, char** argv) {
   std::vector<double> levels{1, 2}, lengths{32}, elements{27};
   double pressure = 15, loose = 5e-3;
   int repeat = 3, threads = 1, increments = 4;
+  bool reuse_factor = true;  // the 3D scenes' default (NewtonSettings::reuse_factor)
   std::vector<std::string> which{"strict", "loose", "ccx"};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -261,6 +264,7 @@ int main(int argc, char** argv) {
     else if (a == "--threads") threads = std::stoi(next());
     else if (a == "--increments") increments = std::stoi(next());
     else if (a == "--loose-tol") loose = std::stod(next());
+    else if (a == "--factorise-every-iteration") reuse_factor = false;
     else if (a == "--variants") {
       which.clear();
       std::stringstream in(next());
@@ -273,10 +277,13 @@ int main(int argc, char** argv) {
   }
   set_thread_count(threads);
   NewtonSettings strict, relaxed;
+  strict.reuse_factor = relaxed.reuse_factor = reuse_factor;
   relaxed.residual_tolerance = loose;
   relaxed.update_tolerance = 1e-2;
-  std::printf("softarm (Hex27 H2/P1 or Hex20 H2s/P1) vs ccx (C3D20R), %g kPa, %d fixed increments, %d thread(s), median of %d\n",
-              pressure, increments, threads, repeat);
+  std::printf("softarm (Hex27 H2/P1 or Hex20 H2s/P1) vs ccx (C3D20R), %g kPa, %d fixed increments, %d thread(s), median of %d, "
+              "softarm %s\n",
+              pressure, increments, threads, repeat,
+              reuse_factor ? "reusing factors (CG on the last one)" : "factorising every Newton iteration");
   std::printf("%-5s %6s %5s %8s | %-26s %5s %5s %8s | %-10s %12s %12s %12s\n", "scene", "l_mm", "level", "dofs",
               "engine", "incr", "iters", "time_s", "ratio", "u_x_mm", "u_y_mm", "u_z_mm");
   const std::vector<std::string> scenes = scene == "both" ? std::vector<std::string>{"rra", "tca"} : std::vector<std::string>{scene};

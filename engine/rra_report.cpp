@@ -4,6 +4,7 @@
 #include <iomanip>
 
 #include "engine/output_files.hpp"
+#include "engine/path_summary.hpp"
 #include "fem/io/vtu_writer.hpp"
 
 namespace softarm::engine {
@@ -76,12 +77,11 @@ nlohmann::json write_rra_summary(const fem::SceneConfig& config, const fem::RraR
       {"reached_pressure_kPa", r.path.reached_pressure_kPa},
       {"mass_kg", {{"tube", r.tube_mass_kg}, {"rings", r.ring_mass_kg}, {"total", r.tube_mass_kg + r.ring_mass_kg}}},
       {"curve", curve},
-      {"solver", {{"load_steps", r.path.path.stats.steps}, {"newton_iterations", r.path.path.stats.newton_iterations},
-                  {"cutbacks", r.path.path.stats.cutbacks}, {"factorizations", r.path.factorizations},
-                  {"indefinite_tangents", r.path.lu_fallbacks}, {"energy_evaluations", r.timings.evaluations}}},
+      {"solver", path_solver_json(r.path)},
       {"time_s", {{"mesh", r.timings.mesh_s}, {"setup", r.timings.setup_s}, {"solve", r.timings.solve_s},
                   {"assembly", r.timings.assembly_s},
                   {"factorize", r.path.factorize_s}, {"total", r.timings.total_s}}}};
+  summary["solver"]["energy_evaluations"] = r.timings.evaluations;
   if (r.path.outcome == fem::PathOutcome::limit_point)
     summary["estimated_limit_pressure_kPa"] = r.path.estimated_limit_pressure_kPa;
   write_json_file(dir, "summary.json", summary);

@@ -4,6 +4,7 @@
 #include <iomanip>
 
 #include "engine/output_files.hpp"
+#include "engine/path_summary.hpp"
 #include "fem/io/vtu_writer.hpp"
 
 namespace softarm::engine {
@@ -80,8 +81,7 @@ nlohmann::json write_spl_summary(const fem::SceneConfig& config, const fem::SplR
       {"joints", joints_json(r.joints)},
       {"mass_kg", mass},
       {"final_peaks", peaks},
-      {"solver", {{"load_steps", r.path.path.stats.steps}, {"newton_iterations", r.path.path.stats.newton_iterations},
-                  {"cutbacks", r.path.path.stats.cutbacks}, {"factorizations", r.path.factorizations}}},
+      {"solver", path_solver_json(r.path)},
       {"time_s", {{"mesh", r.timings.mesh_s}, {"setup", r.timings.setup_s}, {"solve", r.timings.solve_s},
                   {"assembly", r.timings.assembly_s}, {"factorize", r.path.factorize_s}, {"total", r.timings.total_s}}}};
   write_json_file(dir, "summary.json", summary);

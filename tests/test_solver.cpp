@@ -9,6 +9,7 @@
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/load_stepper.hpp"
 #include "fem/solver/lowest_modes.hpp"
+#include "fem/solver/preconditioned_cg.hpp"
 #include "support/test_problems.hpp"
 
 using namespace softarm;
@@ -203,4 +204,91 @@ TEST_CASE("an LU solve does not depend on the matrix it was factorised from livi
   for (int k = 0; k < K.nonZeros(); ++k) K.valuePtr()[k] *= 1.01;
   const Eigen::VectorXd x = solver.solve(b);
   CHECK((x - expected).norm() < 1e-12 * expected.norm());
+}
+
+namespace {
+// The 1D Laplacian with diagonal `d` (SPD for d ≥ 2), n = 40.
+SparseMatrix laplacian(double d, double first_diagonal) {
+  const int n = 40;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, i == 0 ? first_diagonal : d);
+    if (i + 1 < n) t.emplace_back(i, i + 1, -1.0), t.emplace_back(i + 1, i, -1.0);
+  }
+  SparseMatrix K(n, n);
+  K.setFromTriplets(t.begin(), t.end());
+  return K;
+}
+}  // namespace
+
+TEST_CASE("preconditioned CG solves an SPD system exactly in n steps and stops on negative curvature", "[solver]") {
+  const SparseMatrix K = laplacian(2.5, 2.5);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(K.rows(), -1.0, 2.0);
+  const auto identity = [](const Eigen::VectorXd& r) { return r; };
+  Eigen::VectorXd d;
+  const CgResult cg = preconditioned_cg(K, b, identity, 1e-12, 100, d);
+  CHECK(cg.converged);
+  CHECK(cg.iterations <= K.rows());
+  CHECK((K * d - b).norm() <= 1e-12 * b.norm() * 1.0001);
+  CHECK((d - Eigen::MatrixXd(K).llt().solve(b)).norm() < 1e-10 * d.norm());
+  // The exact inverse as preconditioner: one iteration.
+  const Eigen::MatrixXd Kinv = Eigen::MatrixXd(K).inverse();
+  const CgResult exact = preconditioned_cg(K, b, [&](const Eigen::VectorXd& r) { return Eigen::VectorXd(Kinv * r); },
+                                           1e-10, 100, d);
+  CHECK(exact.converged);
+  CHECK(exact.iterations == 1);
+  // Indefinite: the first diagonal entry −3 makes e₀ a direction of negative curvature.
+  const SparseMatrix indefinite = laplacian(2.5, -3.0);
+  const CgResult stop = preconditioned_cg(indefinite, Eigen::VectorXd::Unit(K.rows(), 0), identity, 1e-12, 100, d);
+  CHECK_FALSE(stop.converged);
+  CHECK(stop.negative_curvature);
+}
+
+TEST_CASE("a changed SPD tangent is solved by CG on the earlier factor, an indefinite one is refused", "[solver]") {
+  LinearSolver::Options options;
+  options.reuse_cg_iterations = 4;
+  LinearSolver solver(options);
+  const SparseMatrix K0 = laplacian(2.0, 2.0);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(K0.rows(), 1.0, 2.0);
+  Eigen::VectorXd d;
+  CHECK_FALSE(solver.solve_reusing_factor(K0, b, 1e-10, d));  // nothing factorised yet
+  REQUIRE(solver.factorize(K0) == LinearSolver::Status::positive_definite);
+  // K1 = 1.3 K0 + u uᵀ: K0⁻¹K1 has two distinct eigenvalues besides 1.3's cluster, so CG on
+  // the factor of K0 converges in two iterations.
+  const Eigen::VectorXd u = Eigen::VectorXd::LinSpaced(K0.rows(), 0.0, 1.0);
+  const SparseMatrix K1 = 1.3 * K0 + SparseMatrix((u * u.transpose()).sparseView());
+  REQUIRE(solver.solve_reusing_factor(K1, b, 1e-10, d));
+  CHECK((K1 * d - b).norm() <= 1e-10 * b.norm());
+  CHECK(solver.factorizations == 1);
+  CHECK(solver.reused_solves == 1);
+  CHECK(solver.cg_iterations <= 3);
+  // An indefinite tangent: CG meets negative curvature and says no; the caller factorises.
+  CHECK_FALSE(solver.solve_reusing_factor(laplacian(2.0, -3.0), Eigen::VectorXd::Unit(K0.rows(), 0), 1e-10, d));
+  // A factor that is an LU (of an indefinite matrix) is no preconditioner for CG.
+  REQUIRE(solver.factorize(laplacian(2.0, -3.0)) == LinearSolver::Status::indefinite);
+  CHECK_FALSE(solver.solve_reusing_factor(K0, b, 1e-10, d));
+  CHECK(solver.reused_solves == 1);
+}
+
+TEST_CASE("Newton reusing factors reaches the same path with fewer factorisations", "[solver]") {
+  // The compression path of the stepper tests, solved twice: every iteration factorised, and by
+  // CG on the last factor (inexact Newton, forcing min(1e-2, relative residual)).
+  auto run = [](bool reuse, LinearSolver& solver) {
+    Compression c(0.6);
+    Vector x = c.problem->reference_positions();
+    NewtonSettings newton;
+    newton.reuse_factor = reuse;
+    PathCallbacks cb{[](double) {}, {}};
+    const auto r = follow_load_path(*c.problem, x, solver, {0.25, 0.5, 0.75, 1.0}, cb, newton, StepSettings{});
+    REQUIRE(r.completed);
+    return x;
+  };
+  LinearSolver exact;
+  LinearSolver::Options options;
+  options.reuse_cg_iterations = 30;
+  LinearSolver reusing(options);
+  const Vector x_exact = run(false, exact), x_reused = run(true, reusing);
+  CHECK((x_reused - x_exact).norm() < 1e-6 * x_exact.norm());
+  CHECK(reusing.reused_solves > 0);
+  CHECK(reusing.factorizations < exact.factorizations);
 }

@@ -30,12 +30,23 @@ struct LoadedVolume {
   }
 };
 
-// dp/dV = 1/(∇Vᵀ K⁻¹ ∇V), using the solver's last factorisation of the tangent.
+// dp/dV = 1/(∇Vᵀ K⁻¹ ∇V), using the solver's last factorisation of the tangent (that of
+// Newton's last iterate). Where Newton reuses factors (NewtonSettings::reuse_factor) the last
+// one may be several states old: then K⁻¹∇V is solved with K, the tangent at x, by CG on
+// that factor, or, where CG fails, from K's own factorisation.
 double pv_stiffness(const EnergyProblem& problem, const LoadedVolume& chamber, LinearSolver& solver,
-                    const Vector& x) {
+                    const Vector& x, const NewtonSettings& newton, const SparseMatrix* tangent_at_x) {
   Vector g = chamber.gradient(x);
   problem.zero_prescribed(g);
-  const double compliance_mm3_per_MPa = g.dot(solver.solve(g));
+  Vector compliance;
+  if (!newton.reuse_factor || !tangent_at_x) {
+    compliance = solver.solve(g);
+  } else if (!solver.solve_reusing_factor(*tangent_at_x, g, 1e-10, compliance)) {
+    if (newton.shift_indefinite_tangent) solver.factorize_shifted(*tangent_at_x);
+    else solver.factorize(*tangent_at_x);
+    compliance = solver.solve(g);
+  }
+  const double compliance_mm3_per_MPa = g.dot(compliance);
   // A singular tangent (no solve): the chamber has lost its stiffness, dp/dV = 0 (a limit point).
   if (!std::isfinite(compliance_mm3_per_MPa)) return 0.0;
   return 1e3 / compliance_mm3_per_MPa;  // MPa → kPa
@@ -111,7 +122,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
   {
     const Evaluation e0 = problem.evaluate(x, true, true);
     solver.factorize(e0.hessian);
-    PressureState s0{0.0, chamber.volume(x), pv_stiffness(problem, chamber, solver, x),
+    PressureState s0{0.0, chamber.volume(x), pv_stiffness(problem, chamber, solver, x, spec.newton, nullptr),
                      solver.status() == LinearSolver::Status::positive_definite, 0, true};
     out.history.push_back(s0);
     if (on_state) on_state(s0, x);
@@ -125,7 +136,8 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
     load.dirichlet_scale = level;
   };
   callbacks.on_converged = [&](double level, const Vector& xs, bool is_output, const NewtonReport& report) {
-    PressureState s{level * spec.max_pressure_kPa, chamber.volume(xs), pv_stiffness(problem, chamber, solver, xs),
+    PressureState s{level * spec.max_pressure_kPa, chamber.volume(xs),
+                    pv_stiffness(problem, chamber, solver, xs, spec.newton, &report.last.hessian),
                     report.tangent_positive_definite, report.iterations, is_output};
     out.history.push_back(s);
     if (on_state) on_state(s, xs);
@@ -140,6 +152,8 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
   out.solve_s = solver.solve_seconds;
   out.factorizations = solver.factorizations;
   out.lu_fallbacks = solver.lu_fallbacks;
+  out.reused_solves = solver.reused_solves;
+  out.cg_iterations = solver.cg_iterations;
   out.reached_pressure_kPa = out.history.back().pressure_kPa;
   if (out.path.completed) {
     out.outcome = PathOutcome::completed;

@@ -67,6 +67,7 @@ struct PressurePathResult {
   // Linear-algebra cost of the whole path (for benchmarks).
   double analyse_s = 0.0, factorize_s = 0.0, solve_s = 0.0;
   int factorizations = 0, lu_fallbacks = 0;  // LU: the tangent was indefinite
+  int reused_solves = 0, cg_iterations = 0;  // Newton steps solved by CG on an earlier factor
 };
 
 struct PressurePathSpec {

@@ -52,6 +52,10 @@ void read_solver(JsonReader solver, fem::NewtonSettings& nw, fem::StepSettings& 
                     "how Newton solves with a tangent that is not positive definite: shifted_cholesky (K + σI, a "
                     "descent step; the 3D scenes' default) or lu (exact UMFPACK LU; the axisymmetric default)") ==
       "shifted_cholesky";
+  nw.reuse_factor = solver.boolean(
+      "reuse_factor", nw.reuse_factor,
+      "solve Newton steps by conjugate gradients preconditioned with the last Cholesky factor, factorising only where "
+      "that fails or would cost more than half a factorisation (the 3D scenes' default; off: factorise every iteration)");
   st.verbose = solver.boolean("print_convergence_tables", false, "print a Newton convergence table for every step");
   limit.stiffness_fraction =
       solver.number("limit_point_stiffness_fraction", limit.stiffness_fraction, Range::open(0, 1),

@@ -34,7 +34,7 @@ struct SplSceneSpec {
   double tip_mass_kg = 0;
   bool allow_symmetry = true;
   std::vector<double> output_levels;                      // fractions of the peaks; last = 1
-  NewtonSettings newton{.shift_indefinite_tangent = true};  // 3D: no LU (newton.hpp)
+  NewtonSettings newton{.shift_indefinite_tangent = true, .reuse_factor = true};  // 3D: no LU, factors reused (newton.hpp)
   StepSettings steps;
   LimitPointSettings limit;
 };

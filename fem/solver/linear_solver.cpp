@@ -2,10 +2,12 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 
 #include "fem/core/parallel.hpp"
+#include "fem/solver/preconditioned_cg.hpp"
 
 namespace softarm::fem {
 namespace {
@@ -93,7 +95,8 @@ bool LinearSolver::cholesky_factorize(Chol& c, const SparseMatrix& K) {
   }
   const auto t0 = std::chrono::steady_clock::now();
   c.factorize(K);
-  factorize_seconds += seconds_since(t0);
+  last_cholesky_seconds_ = seconds_since(t0);
+  factorize_seconds += last_cholesky_seconds_;
   cholmod_peak_bytes = static_cast<double>(c.cholmod().memory_usage);
   return c.info() == Eigen::Success;
 }
@@ -154,8 +157,27 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) {
     x = options_.upper ? Eigen::VectorXd(cholesky_upper_.solve(b)) : Eigen::VectorXd(cholesky_.solve(b));
   else
     x = lu_.solve(b);
-  solve_seconds += seconds_since(t0);
+  last_solve_seconds_ = seconds_since(t0);
+  solve_seconds += last_solve_seconds_;
   return x;
+}
+
+bool LinearSolver::solve_reusing_factor(const SparseMatrix& K, const Eigen::VectorXd& b, double tolerance,
+                                        Eigen::VectorXd& d) {
+  if (status_ != Status::positive_definite || shifted_) return false;
+  // Each CG iteration is one solve with the factor plus a product with K (a few per cent
+  // of a solve): past half a factorisation's time, factorising is the better buy.
+  constexpr int kMinIterations = 4, kMaxIterations = 200;
+  const double per_iteration = std::max(last_solve_seconds_, 1e-6);
+  const int budget = options_.reuse_cg_iterations > 0
+                         ? options_.reuse_cg_iterations
+                         : std::clamp(static_cast<int>(0.5 * last_cholesky_seconds_ / per_iteration), kMinIterations,
+                                      kMaxIterations);
+  const CgResult cg =
+      preconditioned_cg(K, b, [this](const Eigen::VectorXd& r) { return solve(r); }, tolerance, budget, d);
+  cg_iterations += cg.iterations;
+  if (cg.converged) ++reused_solves;
+  return cg.converged;
 }
 
 }  // namespace softarm::fem

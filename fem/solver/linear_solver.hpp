@@ -40,6 +40,9 @@ class LinearSolver {
     bool upper = false;  // give CHOLMOD the upper (true) or lower (false) triangle
     double supernodal_switch = 40.0;  // CHOLMOD's flops/nnz(L) threshold for automatic mode
     bool large_supernodes = false;    // relaxed amalgamation nrelax {8, 32, 96}, zrelax {0.8, 0.2, 0.1}
+    /// CG iterations solve_reusing_factor may spend; 0: as many as cost half a factorisation, measured
+    /// (a fixed number makes the choice independent of timing, for tests).
+    int reuse_cg_iterations = 0;
   };
 
   LinearSolver() : LinearSolver(Options{}) {}
@@ -53,11 +56,20 @@ class LinearSolver {
   Status factorize_shifted(const SparseMatrix& K);
   /// Solves with the last factor; NaN everywhere when the matrix was singular (no factor).
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
+  /// Solves K d = b without factorising K: conjugate gradients preconditioned with the
+  /// current factor, which must be an unshifted Cholesky factor of an earlier matrix of
+  /// K's pattern (preconditioned_cg.hpp), to ‖K d − b‖ ≤ tolerance·‖b‖. Returns false (d
+  /// unspecified) when there is no such factor, when CG meets non-positive curvature (K is
+  /// not positive definite), or when it has not converged within the iterations that cost
+  /// half a factorisation (measured: the last factorisation's time over one solve's); the
+  /// caller then factorises K.
+  bool solve_reusing_factor(const SparseMatrix& K, const Eigen::VectorXd& b, double tolerance, Eigen::VectorXd& d);
   Status status() const { return status_; }
 
   // Timings of the last call, seconds (for benchmarks).
   double analyse_seconds = 0.0, factorize_seconds = 0.0, solve_seconds = 0.0;
   int factorizations = 0, lu_fallbacks = 0, shifted_factorizations = 0;
+  int reused_solves = 0, cg_iterations = 0;  // solve_reusing_factor: successes, CG iterations of every call
   double last_shift = 0.0;  // σ of the last factorisation (0: K itself)
   // After the analysis (benchmarks): predicted flops and nonzeros of L, whether
   // CHOLMOD chose the supernodal factor, and CHOLMOD's peak memory in bytes.
@@ -88,6 +100,9 @@ class LinearSolver {
   bool cholesky_analysed_ = false, lu_analysed_ = false;
   Status status_ = Status::singular;
   bool shifted_ = false;  // the Cholesky factor is of K + σI
+  // Durations of the last Cholesky factorisation and of the last solve with it, for
+  // solve_reusing_factor's budget.
+  double last_cholesky_seconds_ = 0.0, last_solve_seconds_ = 0.0;
 };
 
 }  // namespace softarm::fem

@@ -1,5 +1,6 @@
 #include "fem/solver/newton.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -55,15 +56,24 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
                        " iterations (relative residual " + scientific(rel_res) + ")";
       break;
     }
-    const auto status =
-        settings.shift_indefinite_tangent ? solver.factorize_shifted(cur.hessian) : solver.factorize(cur.hessian);
-    report.tangent_positive_definite = status == LinearSolver::Status::positive_definite;
-    if (status == LinearSolver::Status::singular) {
-      report.failure = Failure::singular_tangent;
-      report.message = "tangent matrix is singular";
-      break;
+    Vector dx;
+    const int cg_before = solver.cg_iterations;
+    const double forcing = std::max(std::min(1e-2, rel_res), 1e-12);
+    const bool reused = settings.reuse_factor && solver.solve_reusing_factor(cur.hessian, cur.gradient, forcing, dx);
+    if (reused) {
+      dx = -dx;
+      report.tangent_positive_definite = true;  // CG met no direction of non-positive curvature
+    } else {
+      const auto status =
+          settings.shift_indefinite_tangent ? solver.factorize_shifted(cur.hessian) : solver.factorize(cur.hessian);
+      report.tangent_positive_definite = status == LinearSolver::Status::positive_definite;
+      if (status == LinearSolver::Status::singular) {
+        report.failure = Failure::singular_tangent;
+        report.message = "tangent matrix is singular";
+        break;
+      }
+      dx = -solver.solve(cur.gradient);
     }
-    Vector dx = -solver.solve(cur.gradient);
     problem.zero_prescribed(dx);
     const double slope = cur.gradient.dot(dx);  // directional derivative of Π along dx
     // Backtracking: accept the first step that lowers the energy (Armijo) or,
@@ -92,7 +102,8 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
     if (it == 0) energy_norm0 = std::max(energy_norm, 1e-300);
     last_update = alpha * dx.norm() / std::max((x - X).norm(), 1e-3);
     last_energy_norm = energy_norm / energy_norm0;
-    report.rows.push_back({it + 1, 0.0, last_update, last_energy_norm, alpha, report.tangent_positive_definite});
+    report.rows.push_back({it + 1, 0.0, last_update, last_energy_norm, alpha, report.tangent_positive_definite,
+                           reused ? solver.cg_iterations - cg_before : 0});
     cur = std::move(trial);
     report.iterations = it + 1;
   }
@@ -101,11 +112,12 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
 }
 
 void print_convergence_table(std::ostream& out, const NewtonReport& r) {
-  out << "    it   |r|/|r0|     |dx|/|u|    |dx.r|/|.|0   step  tangent\n";
+  out << "    it   |r|/|r0|     |dx|/|u|    |dx.r|/|.|0   step  tangent     solve\n";
   for (const auto& row : r.rows)
     out << "    " << std::setw(2) << row.iteration << std::scientific << std::setprecision(3) << "  " << row.residual
         << "  " << row.update << "  " << row.energy_norm << std::fixed << std::setprecision(2) << "  " << row.step_length
-        << "  " << (row.positive_definite ? "SPD" : "indefinite") << "\n";
+        << "  " << std::left << std::setw(10) << (row.positive_definite ? "SPD" : "indefinite") << std::right << "  "
+        << (row.cg_iterations > 0 ? "CG " + std::to_string(row.cg_iterations) + " (old factor)" : "factorised") << "\n";
   out << "    " << (r.converged ? "converged" : std::string("failed: ") + to_string(r.failure) + " (" + r.message + ")")
       << "\n";
 }
