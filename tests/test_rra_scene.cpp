@@ -182,3 +182,24 @@ TEST_CASE("thesis RRA with square rings of equal area extends at low pressure", 
   CHECK(r.ring_mass_kg == Approx(ring_volume_mm3(circle.design) * 1.17e-6).epsilon(1e-12));
   CHECK(r.tube_mass_kg == Approx(tube_volume_mm3(spec.design) * 1.08e-6).epsilon(1e-12));
 }
+
+TEST_CASE("Newton gives up early on an unstable branch and stops at the same limit point", "[rra][limit]") {
+  // The ballooning tube with pressure control only and the 3D scenes' shifted-Cholesky
+  // Newton: past the maximum every step meets indefinite tangents. Iterating on them
+  // until max_iterations (0: no limit) or giving up after 4 in a row must stop at the
+  // same pressure, the latter for fewer Newton iterations, with the failure named.
+  const auto nh = test::material(std::make_shared<NeoHookean>(0.1153 / 2, VolumetricPolynomial({0.7029})), 1.08);
+  auto spec = plain_tube(nh, 60.0);
+  spec.path.limit.follow_with_volume_control = false;
+  spec.path.newton.shift_indefinite_tangent = true;
+  const auto patient = run_rra_scene(spec);
+  spec.path.newton.max_indefinite_iterations = 4;
+  const auto guarded = run_rra_scene(spec);
+  INFO(patient.path.diagnosis << "\n" << guarded.path.diagnosis);
+  INFO("Newton iterations " << patient.path.path.stats.newton_iterations << " vs "
+                            << guarded.path.path.stats.newton_iterations);
+  CHECK(guarded.path.outcome == PathOutcome::limit_point);
+  CHECK(guarded.path.path.failure == Failure::unstable_branch);
+  CHECK(guarded.path.reached_pressure_kPa == Approx(patient.path.reached_pressure_kPa).epsilon(1e-3));
+  CHECK(guarded.path.path.stats.newton_iterations < patient.path.path.stats.newton_iterations);
+}

@@ -56,6 +56,10 @@ void read_solver(JsonReader solver, fem::NewtonSettings& nw, fem::StepSettings& 
       "reuse_factor", nw.reuse_factor,
       "solve Newton steps by conjugate gradients preconditioned with the last Cholesky factor, factorising only where "
       "that fails or would cost more than half a factorisation (the 3D scenes' default; off: factorise every iteration)");
+  nw.max_indefinite_iterations = solver.integer(
+      "max_indefinite_iterations", nw.max_indefinite_iterations, Range::closed(0, 1000),
+      "a Newton step gives up (and the load step is cut back) after this many iterations in a row on an indefinite "
+      "tangent: no stable equilibrium near that load; 0: never (the 3D scenes' default is 4)");
   st.verbose = solver.boolean("print_convergence_tables", false, "print a Newton convergence table for every step");
   limit.stiffness_fraction =
       solver.number("limit_point_stiffness_fraction", limit.stiffness_fraction, Range::open(0, 1),

@@ -34,7 +34,8 @@ struct SplSceneSpec {
   double tip_mass_kg = 0;
   bool allow_symmetry = true;
   std::vector<double> output_levels;                      // fractions of the peaks; last = 1
-  NewtonSettings newton{.shift_indefinite_tangent = true, .reuse_factor = true};  // 3D: no LU, factors reused (newton.hpp)
+  // 3D: no LU, factors reused, no iterating on an unstable branch (newton.hpp)
+  NewtonSettings newton{.shift_indefinite_tangent = true, .reuse_factor = true, .max_indefinite_iterations = 4};
   StepSettings steps;
   LimitPointSettings limit;
 };

@@ -13,6 +13,8 @@ enum class Failure {
   max_iterations,        // Newton did not converge in the allowed iterations
   diverged,              // residual grew by orders of magnitude
   singular_tangent,      // neither Cholesky nor LU could factorise the tangent
+  unstable_branch,       // the tangent stayed indefinite for several iterations in a row: no stable
+                         // equilibrium near this load (past a limit point), so the step is hopeless
 };
 
 inline const char* to_string(Failure f) {
@@ -23,6 +25,7 @@ inline const char* to_string(Failure f) {
     case Failure::max_iterations: return "max_iterations";
     case Failure::diverged: return "diverged";
     case Failure::singular_tangent: return "singular_tangent";
+    case Failure::unstable_branch: return "unstable_branch";
   }
   return "unknown";
 }

@@ -25,6 +25,7 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
     return report;
   }
   double scale = 0.0, energy_norm0 = 0.0, last_update = 1e300, last_energy_norm = 1e300;
+  int indefinite_in_a_row = 0;
   for (int it = 0;; ++it) {
     const double rnorm = cur.gradient.norm();
     if (!std::isfinite(rnorm)) {
@@ -73,6 +74,14 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
         break;
       }
       dx = -solver.solve(cur.gradient);
+    }
+    indefinite_in_a_row = report.tangent_positive_definite ? 0 : indefinite_in_a_row + 1;
+    if (settings.max_indefinite_iterations > 0 && indefinite_in_a_row > settings.max_indefinite_iterations) {
+      report.failure = Failure::unstable_branch;
+      report.message = "the tangent was indefinite in " + std::to_string(indefinite_in_a_row) +
+                       " iterations in a row (relative residual " + scientific(rel_res) +
+                       "): no stable equilibrium near this load";
+      break;
     }
     problem.zero_prescribed(dx);
     const double slope = cur.gradient.dot(dx);  // directional derivative of Π along dx

@@ -39,6 +39,13 @@ struct NewtonSettings {
   // steps of a smooth path, the tangent changes little; a 3D factorisation costs
   // seconds, a solve with it a tenth of that. The 3D scenes' default.
   bool reuse_factor = false;
+  // Give up (Failure::unstable_branch) once this many iterations in a row met an indefinite
+  // tangent; 0: never. At a stable equilibrium the tangent is positive definite, and Newton
+  // converges on one with positive definite tangents; a run of indefinite ones means the
+  // iterates are on no stable branch, as past a limit point, where the step would otherwise
+  // spend all max_iterations (the thesis 3CA near its 316 kPa maximum: 4 failed steps ×
+  // 2 attempts × 20 iterations, three quarters of the run). The 3D scenes use 4.
+  int max_indefinite_iterations = 0;
 };
 
 struct NewtonRow {
