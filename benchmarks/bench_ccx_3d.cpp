@@ -23,10 +23,11 @@
 // Usage: bench_ccx_3d [--scene tca|rra|both] [--levels 1,2] [--lengths 32,64]
 //                     [--pressure-kPa 15] [--repeat 3] [--threads 1]
 //                     [--increments 4] [--loose-tol 5e-3]
-//                     [--variants strict,loose,ccx,ccx-tight]   (ratio: time / the first variant's)
+//                     [--variants strict,loose,ccx,ccx-tight,strict-refactor,loose-refactor]
+//                                 (ratio: time / the first variant's)
 //                     [--elements 27,20]   (softarm's Hex27 and/or Hex20; ccx runs once per mesh)
-//                     [--factorise-every-iteration]   (softarm without its default factor reuse:
-//                      NewtonSettings::reuse_factor, CG on the last Cholesky factor)
+//                     (strict-refactor, loose-refactor: softarm factorising every Newton iteration,
+//                      without its default factor reuse, NewtonSettings::reuse_factor)
 // Medians over --repeat runs are printed (this machine is shared and noisy).
 // "dofs": 3 × nodes, constrained ones included (softarm: Hex27 nodes; ccx: the
 // C3D20 nodes). softarm's time is setup + solve (not meshing; the 3CA's includes
@@ -244,7 +245,6 @@ int main(int argc, char** argv) {
   std::vector<double> levels{1, 2}, lengths{32}, elements{27};
   double pressure = 15, loose = 5e-3;
   int repeat = 3, threads = 1, increments = 4;
-  bool reuse_factor = true;  // the 3D scenes' default (NewtonSettings::reuse_factor)
   std::vector<std::string> which{"strict", "loose", "ccx"};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -264,7 +264,6 @@ int main(int argc, char** argv) {
     else if (a == "--threads") threads = std::stoi(next());
     else if (a == "--increments") increments = std::stoi(next());
     else if (a == "--loose-tol") loose = std::stod(next());
-    else if (a == "--factorise-every-iteration") reuse_factor = false;
     else if (a == "--variants") {
       which.clear();
       std::stringstream in(next());
@@ -277,13 +276,13 @@ int main(int argc, char** argv) {
   }
   set_thread_count(threads);
   NewtonSettings strict, relaxed;
-  strict.reuse_factor = relaxed.reuse_factor = reuse_factor;
+  strict.reuse_factor = relaxed.reuse_factor = true;  // the 3D scenes' default
+  NewtonSettings strict_refactor = strict, relaxed_refactor = relaxed;
+  strict_refactor.reuse_factor = relaxed_refactor.reuse_factor = false;
   relaxed.residual_tolerance = loose;
   relaxed.update_tolerance = 1e-2;
-  std::printf("softarm (Hex27 H2/P1 or Hex20 H2s/P1) vs ccx (C3D20R), %g kPa, %d fixed increments, %d thread(s), median of %d, "
-              "softarm %s\n",
-              pressure, increments, threads, repeat,
-              reuse_factor ? "reusing factors (CG on the last one)" : "factorising every Newton iteration");
+  std::printf("softarm (Hex27 H2/P1 or Hex20 H2s/P1) vs ccx (C3D20R), %g kPa, %d fixed increments, %d thread(s), median of %d\n",
+              pressure, increments, threads, repeat);
   std::printf("%-5s %6s %5s %8s | %-26s %5s %5s %8s | %-10s %12s %12s %12s\n", "scene", "l_mm", "level", "dofs",
               "engine", "incr", "iters", "time_s", "ratio", "u_x_mm", "u_y_mm", "u_z_mm");
   const std::vector<std::string> scenes = scene == "both" ? std::vector<std::string>{"rra", "tca"} : std::vector<std::string>{scene};
@@ -307,6 +306,9 @@ int main(int argc, char** argv) {
             const std::string tag = h20 ? " H20" : " H27";
             if (v == "strict") variants.push_back({"softarm tol 1e-8" + tag, v, h20, {}});
             else if (v == "loose") variants.push_back({"softarm tol " + std::to_string(loose).substr(0, 6) + tag, v, h20, {}});
+            else if (v == "strict-refactor") variants.push_back({"refactor tol 1e-8" + tag, v, h20, {}});
+            else if (v == "loose-refactor")
+              variants.push_back({"refactor tol " + std::to_string(loose).substr(0, 6) + tag, v, h20, {}});
             else if (v == "ccx" && first) variants.push_back({"ccx default", v, false, {}});
             else if (v == "ccx-tight" && first) variants.push_back({"ccx R_n 1e-6", v, false, {}});
             else if (v != "ccx" && v != "ccx-tight") {
@@ -319,9 +321,13 @@ int main(int argc, char** argv) {
             const std::string& v = variants[k].kind;
             Problem pk = p;
             pk.serendipity = variants[k].serendipity;
-            variants[k].runs.push_back(v == "strict"  ? softarm_run(pk, increments, strict)
-                                       : v == "loose" ? softarm_run(pk, increments, relaxed)
-                                                      : ccx_run(p, increments, threads, v == "ccx-tight"));
+            const auto newton = [&]() -> const NewtonSettings& {
+              if (v == "strict") return strict;
+              if (v == "loose") return relaxed;
+              return v == "strict-refactor" ? strict_refactor : relaxed_refactor;
+            };
+            variants[k].runs.push_back(v.starts_with("ccx") ? ccx_run(p, increments, threads, v == "ccx-tight")
+                                                            : softarm_run(pk, increments, newton()));
             const Answer& a = variants[k].runs.back();  // each run as it ends (long runs)
             std::printf("  run %d %-26s %5d iterations %8.2f s  u = (%.5f, %.5f, %.5f) mm%s\n", r + 1,
                         variants[k].name.c_str(), a.iterations, a.seconds, a.u.x(), a.u.y(), a.u.z(),
