@@ -277,10 +277,10 @@ int main(int argc, char** argv) {
   set_thread_count(threads);
   NewtonSettings strict, relaxed;
   strict.reuse_factor = relaxed.reuse_factor = true;  // the 3D scenes' default
-  NewtonSettings strict_refactor = strict, relaxed_refactor = relaxed;
-  strict_refactor.reuse_factor = relaxed_refactor.reuse_factor = false;
   relaxed.residual_tolerance = loose;
   relaxed.update_tolerance = 1e-2;
+  NewtonSettings strict_refactor = strict, relaxed_refactor = relaxed;  // after the tolerances
+  strict_refactor.reuse_factor = relaxed_refactor.reuse_factor = false;
   std::printf("softarm (Hex27 H2/P1 or Hex20 H2s/P1) vs ccx (C3D20R), %g kPa, %d fixed increments, %d thread(s), median of %d\n",
               pressure, increments, threads, repeat);
   std::printf("%-5s %6s %5s %8s | %-26s %5s %5s %8s | %-10s %12s %12s %12s\n", "scene", "l_mm", "level", "dofs",
