@@ -42,8 +42,7 @@ double pv_stiffness(const EnergyProblem& problem, const LoadedVolume& chamber, L
   if (!newton.reuse_factor || !tangent_at_x) {
     compliance = solver.solve(g);
   } else if (!solver.solve_reusing_factor(*tangent_at_x, g, 1e-10, compliance)) {
-    if (newton.shift_indefinite_tangent) solver.factorize_shifted(*tangent_at_x);
-    else solver.factorize(*tangent_at_x);
+    factorize_tangent(solver, *tangent_at_x, newton);
     compliance = solver.solve(g);
   }
   const double compliance_mm3_per_MPa = g.dot(compliance);

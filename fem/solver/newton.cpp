@@ -14,6 +14,10 @@ std::string scientific(double v) {
 }
 }  // namespace
 
+LinearSolver::Status factorize_tangent(LinearSolver& solver, const SparseMatrix& K, const NewtonSettings& settings) {
+  return settings.shift_indefinite_tangent ? solver.factorize_shifted(K) : solver.factorize(K);
+}
+
 NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver& solver,
                           const NewtonSettings& settings) {
   NewtonReport report;
@@ -65,8 +69,7 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
       dx = -dx;
       report.tangent_positive_definite = true;  // CG met no direction of non-positive curvature
     } else {
-      const auto status =
-          settings.shift_indefinite_tangent ? solver.factorize_shifted(cur.hessian) : solver.factorize(cur.hessian);
+      const auto status = factorize_tangent(solver, cur.hessian, settings);
       report.tangent_positive_definite = status == LinearSolver::Status::positive_definite;
       if (status == LinearSolver::Status::singular) {
         report.failure = Failure::singular_tangent;

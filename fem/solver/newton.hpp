@@ -65,6 +65,9 @@ struct NewtonReport {
   Evaluation last;                         // evaluation at the returned x
 };
 
+/// Factorises a tangent the way these settings ask: shifted Cholesky or LU where it is indefinite.
+LinearSolver::Status factorize_tangent(LinearSolver& solver, const SparseMatrix& K, const NewtonSettings& settings);
+
 /// Solves ∇Π(x) = 0 from the given x (whose prescribed dofs are already set).
 /// On failure x is left at the last accepted iterate.
 NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver& solver, const NewtonSettings& settings);
