@@ -25,7 +25,8 @@
 //                     [--increments 4] [--loose-tol 5e-3]
 //                     [--variants strict,loose,ccx,ccx-tight,strict-refactor,loose-refactor]
 //                                 (ratio: time / the first variant's)
-//                     [--elements 27,20]   (softarm's Hex27 and/or Hex20; ccx runs once per mesh)
+//                     [--elements 27,20,20r]   (softarm's Hex27, Hex20 and/or Hex20 at 2×2×2 Gauss points,
+//                                           the C3D20R rule; ccx runs once per mesh)
 //                     (strict-refactor, loose-refactor: softarm factorising every Newton iteration,
 //                      without its default factor reuse, NewtonSettings::reuse_factor)
 // Medians over --repeat runs are printed (this machine is shared and noisy).
@@ -103,6 +104,7 @@ struct Problem {
   int level = 1;
   double pressure_kPa = 15;
   bool serendipity = false;  // softarm's Hex20 instead of Hex27 (ccx's deck is the same)
+  ElementIntegration integration = ElementIntegration::full;  // reduced: Hex20 as C3D20R
 };
 
 TcaSceneSpec tca_spec(const Problem& p, int increments, const NewtonSettings& newton) {
@@ -112,6 +114,7 @@ TcaSceneSpec tca_spec(const Problem& p, int increments, const NewtonSettings& ne
   spec.ring_material = builtin_material("digital_abs", "bench");
   spec.mesh_level = p.level;
   spec.serendipity = p.serendipity;
+  spec.integration = p.integration;
   spec.chamber_pressure_kPa = {0, p.pressure_kPa, p.pressure_kPa};
   spec.output_pressures_kPa = {p.pressure_kPa};
   spec.steps.initial_increment = spec.steps.max_increment = 1.0 / increments;
@@ -150,7 +153,8 @@ Answer softarm_run(const Problem& p, int increments, const NewtonSettings& newto
   LoadState load;
   load.chamber_pressure_MPa = {0.0};
   EnergyProblem problem(flattened_positions(mesh), actuator_3d_constraints(mesh));
-  problem.add_form(make_elastic_form(mesh, {silicone(), builtin_material("digital_abs", "bench")}));
+  problem.add_form(make_elastic_form(mesh, {silicone(), builtin_material("digital_abs", "bench")},
+                                     VolumetricTreatment::projected_dilatation, p.integration));
   problem.add_form(std::make_shared<ChamberPressureForm>(mesh, 0, load));
   problem.finalize();
   Eigen::VectorXd x = problem.reference_positions();
@@ -242,7 +246,8 @@ std::vector<double> parse_list(const char* s) {
 
 int main(int argc, char** argv) {
   std::string scene = "both";
-  std::vector<double> levels{1, 2}, lengths{32}, elements{27};
+  std::vector<double> levels{1, 2}, lengths{32};
+  std::vector<std::string> elements{"27"};
   double pressure = 15, loose = 5e-3;
   int repeat = 3, threads = 1, increments = 4;
   std::vector<std::string> which{"strict", "loose", "ccx"};
@@ -257,7 +262,11 @@ int main(int argc, char** argv) {
     };
     if (a == "--scene") scene = next();
     else if (a == "--levels") levels = parse_list(next());
-    else if (a == "--elements") elements = parse_list(next());
+    else if (a == "--elements") {
+      elements.clear();
+      std::stringstream in(next());
+      for (std::string item; std::getline(in, item, ',');) elements.push_back(item);
+    }
     else if (a == "--lengths") lengths = parse_list(next());
     else if (a == "--pressure-kPa") pressure = std::stod(next());
     else if (a == "--repeat") repeat = std::stoi(next());
@@ -293,24 +302,26 @@ int main(int argc, char** argv) {
         struct Variant {
           std::string name, kind;
           bool serendipity = false;
+          ElementIntegration integration = ElementIntegration::full;
           std::vector<Answer> runs;
         };
         std::vector<Variant> variants;
         for (const auto& v : which)
-          for (double e : elements) {
-            const bool h20 = e == 20, first = e == elements.front();
-            if (e != 20 && e != 27) {
-              std::fprintf(stderr, "--elements takes 20 and/or 27\n");
+          for (const std::string& e : elements) {
+            const bool h20 = e == "20" || e == "20r", first = e == elements.front();
+            const auto rule = e == "20r" ? ElementIntegration::reduced : ElementIntegration::full;
+            if (!h20 && e != "27") {
+              std::fprintf(stderr, "--elements takes 27, 20 and/or 20r\n");
               return 2;
             }
-            const std::string tag = h20 ? " H20" : " H27";
-            if (v == "strict") variants.push_back({"softarm tol 1e-8" + tag, v, h20, {}});
-            else if (v == "loose") variants.push_back({"softarm tol " + std::to_string(loose).substr(0, 6) + tag, v, h20, {}});
-            else if (v == "strict-refactor") variants.push_back({"refactor tol 1e-8" + tag, v, h20, {}});
+            const std::string tag = e == "20r" ? " H20R" : h20 ? " H20" : " H27";
+            if (v == "strict") variants.push_back({"softarm tol 1e-8" + tag, v, h20, rule, {}});
+            else if (v == "loose") variants.push_back({"softarm tol " + std::to_string(loose).substr(0, 6) + tag, v, h20, rule, {}});
+            else if (v == "strict-refactor") variants.push_back({"refactor tol 1e-8" + tag, v, h20, rule, {}});
             else if (v == "loose-refactor")
-              variants.push_back({"refactor tol " + std::to_string(loose).substr(0, 6) + tag, v, h20, {}});
-            else if (v == "ccx" && first) variants.push_back({"ccx default", v, false, {}});
-            else if (v == "ccx-tight" && first) variants.push_back({"ccx R_n 1e-6", v, false, {}});
+              variants.push_back({"refactor tol " + std::to_string(loose).substr(0, 6) + tag, v, h20, rule, {}});
+            else if (v == "ccx" && first) variants.push_back({"ccx default", v, false, ElementIntegration::full, {}});
+            else if (v == "ccx-tight" && first) variants.push_back({"ccx R_n 1e-6", v, false, ElementIntegration::full, {}});
             else if (v != "ccx" && v != "ccx-tight") {
               std::fprintf(stderr, "unknown variant %s\n", v.c_str());
               return 2;
@@ -321,6 +332,7 @@ int main(int argc, char** argv) {
             const std::string& v = variants[k].kind;
             Problem pk = p;
             pk.serendipity = variants[k].serendipity;
+            pk.integration = variants[k].integration;
             const auto newton = [&]() -> const NewtonSettings& {
               if (v == "strict") return strict;
               if (v == "loose") return relaxed;

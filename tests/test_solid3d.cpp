@@ -2,17 +2,20 @@
 // central finite differences, the exact volume of a box cavity, the patch test
 // under a non-symmetric homogeneous deformation, and nearly incompressible
 // Ogden uniaxial tension against the closed form; Hex8 (H1/P0), Hex20 (serendipity,
-// H2s/P1) and Hex27 (H2/P1).
+// H2s/P1, at 3×3×3 and at 2×2×2 Gauss points) and Hex27 (H2/P1).
 //
 // Finite-difference tolerance 1e-6, as in test_forms.cpp: with coordinates
 // O(1 mm), moduli O(0.1–3000 MPa) and h = 1e-6 mm, the truncation error is
 // ~1e-12 relative and round-off ~1e-16/1e-6·|Π|/|g| ≈ 1e-9…1e-8, so 1e-6
 // leaves two orders of margin while a wrong term shows as O(1).
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
+#include <vector>
 
 #include "fem/forms/elastic_form.hpp"
 #include "fem/elements/hexahedron.hpp"
@@ -32,6 +35,17 @@ using namespace softarm::fem;
 namespace {
 
 constexpr int kHexKinds[3] = {8, 20, 27};  // nodes per element
+
+/// The element formulations: a mesh's nodes per element and the Gauss rule.
+struct ElementKind {
+  int nodes;
+  ElementIntegration integration;
+  const char* name;
+};
+constexpr ElementKind kElementKinds[4] = {{8, ElementIntegration::full, "Hex8"},
+                                          {20, ElementIntegration::full, "Hex20"},
+                                          {20, ElementIntegration::reduced, "Hex20 reduced"},
+                                          {27, ElementIntegration::full, "Hex27"}};
 
 /// A Hex8 mesh as it is, or promoted to Hex27 or Hex20 (`nodes`).
 Mesh promoted(const Mesh& linear, int nodes) {
@@ -76,18 +90,19 @@ Vector solve(const EnergyProblem& problem, const std::vector<double>& levels, co
 }  // namespace
 
 TEST_CASE("3D elastic form: gradient and Hessian match finite differences", "[solid3d]") {
-  for (int nodes : kHexKinds)
+  for (const auto& kind : kElementKinds)
     for (const auto& c : test::form_cases()) {
+      const int nodes = kind.nodes;
       // Two elements along each axis of 1 mm: every node couples across element faces.
       const Mesh mesh = nodes == 8 ? box({2, 2, 2}, 2, 2, 2, 1.0, 8) : box({2, 1, 1}, 2, 1, 1, 1.0, nodes);
       EnergyProblem problem(flattened_positions(mesh), DirichletConstraints{});
-      problem.add_form(make_elastic_form(mesh, {c.material}, c.treatment));
+      problem.add_form(make_elastic_form(mesh, {c.material}, c.treatment, kind.integration));
       problem.finalize();
       // A large, non-homogeneous deformation: ±0.2 mm on 1 mm elements (±0.1 mm for
       // the quadratic elements, whose mid-edge nodes sit 0.5 mm from the corners).
       const Vector x = test::perturbed(problem.reference_positions(), nodes == 8 ? 0.2 : 0.1);
       const auto err = test::finite_difference_errors(problem, x, 1e-6);
-      INFO("Hex" << nodes << ", " << c.name << ": gradient error " << err.gradient
+      INFO(kind.name << ", " << c.name << ": gradient error " << err.gradient
                  << ", Hessian error " << err.hessian);
       CHECK(err.gradient < 1e-6);
       CHECK(err.hessian < 1e-6);
@@ -119,11 +134,13 @@ TEST_CASE("3D patch test: a distorted box reproduces a non-symmetric homogeneous
   // it to round-off: the trilinear geometry makes ∂N/∂X·det(∂X/∂ξ) polynomial, of a
   // degree the 2×2×2 (Hex8) and 3×3×3 (Hex20, Hex27) rules integrate exactly (the
   // serendipity space holds every trilinear function, ξηζ included), and J is
-  // constant, so the projected dilatation equals it.
+  // constant, so the projected dilatation equals it. Hex20's 2×2×2 rule passes too:
+  // ∂N_a/∂ξ_k times a cofactor of ∂X/∂ξ is at most cubic in each direction, which
+  // two Gauss points per direction still integrate exactly.
   Eigen::Matrix3d F0;
   F0 << 1.2, 0.3, 0.1, -0.1, 0.9, 0.2, 0.05, 0.15, 1.1;
-  for (int nodes : kHexKinds) {
-    const int n = nodes == 8 ? 3 : 2;
+  for (const auto& kind : kElementKinds) {
+    const int nodes = kind.nodes, n = nodes == 8 ? 3 : 2;
     const Mesh mesh = box({2, 3, 4}, n, n, n, 1.0, nodes);
     DirichletConstraints c;
     for (int n : mesh.node_sets.at("boundary")) {
@@ -131,7 +148,8 @@ TEST_CASE("3D patch test: a distorted box reproduces a non-symmetric homogeneous
       for (int i = 0; i < 3; ++i) c.fix(3 * n + i, u[i]);
     }
     EnergyProblem problem(flattened_positions(mesh), c);
-    problem.add_form(make_elastic_form(mesh, {test::dragon_skin_30_ogden(1000.0)}));
+    problem.add_form(make_elastic_form(mesh, {test::dragon_skin_30_ogden(1000.0)},
+                                       VolumetricTreatment::projected_dilatation, kind.integration));
     problem.finalize();
     const Vector x = solve(problem, {1.0}, PathCallbacks{[](double) {}, {}});
     double max_error = 0.0;
@@ -139,7 +157,7 @@ TEST_CASE("3D patch test: a distorted box reproduces a non-symmetric homogeneous
       max_error = std::max(max_error, (x.segment<3>(3 * n) - F0 * mesh.X.row(n).transpose()).cwiseAbs().maxCoeff());
     // Newton stops at its residual tolerance, which leaves nodal errors of ~1e-9 mm
     // (Hex20: 2.5e-9); an element that fails the patch test is off by > 1e-4 mm.
-    INFO("Hex" << nodes << ": max nodal error " << max_error << " mm");
+    INFO(kind.name << ": max nodal error " << max_error << " mm");
     CHECK(max_error < 1e-8);
   }
 }
@@ -295,5 +313,39 @@ TEST_CASE("Hex20 and Quad8 shape functions: Kronecker property, partition of uni
     CHECK(M[a] == Approx(N[kBottom[a]]).margin(1e-15));
     CHECK(Ms[a] == Approx(dN(kBottom[a], 0)).margin(1e-14));
     CHECK(Mt[a] == Approx(dN(kBottom[a], 1)).margin(1e-14));
+  }
+}
+
+TEST_CASE("Hex20 at 2x2x2 Gauss points: a lone element's spurious modes do not survive in a mesh", "[solid3d]") {
+  // Zero-energy modes of the tangent at rest, unconstrained: a sound element has
+  // only the six rigid-body modes. The 2×2×2 rule leaves a lone 20-node element
+  // with spurious ones too (Bathe, Finite Element Procedures, §5.5.6): here the
+  // rank is 8 points × 5 deviatoric strains + 4 dilatation modes = 44 of 60, so
+  // 16 zero modes, 10 spurious. A row of elements one wide in two directions still
+  // keeps 6; two or more elements across in two directions share none, so such a
+  // mesh has only the rigid modes (why C3D20R needs no hourglass control; the
+  // actuator meshes are several elements across everywhere, and their clamped
+  // tangents factorise by Cholesky at rest). Counted as eigenvalues below 1e-9 of
+  // the largest.
+  const auto zero_modes = [](const Mesh& mesh, ElementIntegration integration) {
+    EnergyProblem problem(flattened_positions(mesh), DirichletConstraints{});
+    problem.add_form(make_elastic_form(mesh, {test::neo_hookean(1.0, 1000.0)},
+                                       VolumetricTreatment::projected_dilatation, integration));
+    problem.finalize();
+    const Eigen::MatrixXd K(problem.evaluate(problem.reference_positions(), false, true).hessian);
+    const Eigen::VectorXd lambda = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(K, Eigen::EigenvaluesOnly).eigenvalues();
+    int zero = 0;
+    for (double l : lambda) zero += std::abs(l) < 1e-9 * lambda.cwiseAbs().maxCoeff();
+    return zero;
+  };
+  struct Case {
+    int n, m, k, reduced_zero_modes;
+  };
+  for (const auto& c : std::vector<Case>{{1, 1, 1, 16}, {2, 1, 1, 12}, {2, 2, 1, 6}, {2, 2, 2, 6}, {3, 3, 1, 6}}) {
+    const Mesh mesh = box({1.0 * c.n, 1.0 * c.m, 1.0 * c.k}, c.n, c.m, c.k, 1.0, 20);
+    const int full = zero_modes(mesh, ElementIntegration::full), reduced = zero_modes(mesh, ElementIntegration::reduced);
+    INFO(c.n << "x" << c.m << "x" << c.k << " Hex20: " << full << " zero modes at 3x3x3, " << reduced << " at 2x2x2");
+    CHECK(full == 6);
+    CHECK(reduced == c.reduced_zero_modes);
   }
 }

@@ -17,8 +17,13 @@ using SolidForm = ProjectedDilatationForm<E, hex::ReferencePoint, 3, hex::kActiv
 }  // namespace
 
 std::shared_ptr<ElasticForm> make_elastic_form(const Mesh& mesh, std::vector<Material> part_materials,
-                                               VolumetricTreatment treatment) {
+                                               VolumetricTreatment treatment, ElementIntegration integration) {
   const int n = mesh.nodes_per_element;
+  if (integration == ElementIntegration::reduced) {
+    if (mesh.dim == 3 && n == hex::Hex20::kNodes)
+      return std::make_shared<SolidForm<hex::Hex20Reduced>>(mesh, std::move(part_materials), treatment);
+    throw std::logic_error("elastic form: reduced integration exists only for the 20-node hexahedron");
+  }
   if (mesh.dim == 2 && n == axisym::Quad4::kNodes)
     return std::make_shared<AxisymmetricForm<axisym::Quad4>>(mesh, std::move(part_materials), treatment);
   if (mesh.dim == 2 && n == axisym::Quad9::kNodes)

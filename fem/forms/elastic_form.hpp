@@ -33,6 +33,11 @@ namespace softarm::fem {
 
 enum class VolumetricTreatment { projected_dilatation, pointwise };
 
+/// Gauss rule of the element: `full` (2×2×2 for linear, 3×3×3 for quadratic
+/// hexahedra) or `reduced` (2×2×2 for the 20-node serendipity hexahedron, as
+/// C3D20R; no other element has a reduced rule here).
+enum class ElementIntegration { full, reduced };
+
 /// Per-element results for reports and VTU output.
 struct ElementResult {
   double max_principal_stretch = 1.0;
@@ -54,9 +59,10 @@ class ElasticForm : public Form {
 /// The elastic form of a mesh, its element chosen by dimension and nodes per element:
 /// axisymmetric Q1/P0 (2D, 4 nodes) or Q2/P1 (2D, 9), Hex8/P0 (3D, 8), Hex20/P1 (3D, 20) or Hex27/P1 (3D, 27).
 /// `part_materials[i]` is the material of mesh part i. Throws std::logic_error for other
-/// meshes and for meshes with inverted elements.
+/// meshes, for meshes with inverted elements and for `reduced` integration of anything but Hex20.
 std::shared_ptr<ElasticForm> make_elastic_form(
     const Mesh& mesh, std::vector<Material> part_materials,
-    VolumetricTreatment treatment = VolumetricTreatment::projected_dilatation);
+    VolumetricTreatment treatment = VolumetricTreatment::projected_dilatation,
+    ElementIntegration integration = ElementIntegration::full);
 
 }  // namespace softarm::fem

@@ -49,6 +49,13 @@ struct ChamberLoads {
 ChamberLoads add_chamber_loads(const Mesh& mesh, const std::vector<double>& peaks_kPa, const LoadState& load,
                                EnergyProblem& problem);
 
+/// The Gauss rule a scene asks for where the mesh is Hex20 (the only element with a
+/// reduced rule); `full` on Hex8 and Hex27 meshes (a --element-order 1 override of
+/// a Hex20 config runs Hex8 at its own rule; the report names the element used).
+inline ElementIntegration hex20_integration(const Mesh& mesh, ElementIntegration asked) {
+  return mesh.dim == 3 && mesh.nodes_per_element == 20 ? asked : ElementIntegration::full;
+}
+
 /// The node set `clamped` fixed in all directions; the "symmetry" set (if any) keeps u_y = 0.
 DirichletConstraints clamped_with_symmetry(const Mesh& mesh, const std::string& clamped);
 

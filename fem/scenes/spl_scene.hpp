@@ -29,6 +29,7 @@ struct SplSceneSpec {
   int mesh_level = 1;
   int element_order = 2;                                  // 1: Hex8/P0, 2: Hex27/P1 or Hex20/P1
   bool serendipity = false;                               // order 2: Hex20 instead of Hex27
+  ElementIntegration integration = ElementIntegration::full;  // reduced: Hex20 at 2×2×2 points (C3D20R)
   std::array<double, 9> chamber_pressure_kPa{};          // peaks, ramped together
   Eigen::Vector3d gravity_m_s2{0, 0, -9.80665};           // user frame; hanging arm by default
   double tip_mass_kg = 0;

@@ -40,6 +40,7 @@ struct TcaSceneSpec {
   int mesh_level = 1;
   int element_order = 2;                                   // 1: Hex8/P0, 2: Hex27/P1 or Hex20/P1
   bool serendipity = false;                                // order 2: Hex20 instead of Hex27
+  ElementIntegration integration = ElementIntegration::full;  // reduced: Hex20 at 2×2×2 points (C3D20R)
   std::array<double, 3> chamber_pressure_kPa{0, 0, 0};      // peak pressure of chambers 1–3, ramped together
   Eigen::Vector3d gravity_m_s2 = Eigen::Vector3d::Zero();   // user frame
   bool allow_symmetry = true;                               // false: always the full model
