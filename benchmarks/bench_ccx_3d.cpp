@@ -42,6 +42,10 @@
 //   3CA 32 mm L1 (18,990 / 10,296):    softarm 22.1 (19), loose 14.0 (11), ccx 19.5 (12)
 //   3CA 64 mm L1 (34,830 / 18,720):    softarm 24.7 (18), loose 12.5 (8),  ccx 20.1 (13)
 //   3CA 32 mm L2 (139,206 / 72,750), one run: softarm 247 (18), ccx 277 (13)
+// Measured 2026-11-23, Hex20 at 3×3×3 and at 2×2×2 points (--elements 20,20r --lengths 32,64
+// --levels 1 --variants strict,loose,ccx, medians of 3, one thread, a level-2 3CA solve on the
+// other core); ccx / softarm loose with the C3D20R rule: RRA 32 mm 3.4×, RRA 64 mm 3.2×,
+// 3CA 32 mm 3.0×, 3CA 64 mm 3.4× (README, "The 3CA and SPL scenes").
 #include <unistd.h>
 
 #include <algorithm>
