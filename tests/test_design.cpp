@@ -103,6 +103,10 @@ TEST_CASE("bad requirements name the field", "[design]") {
     doc["requirements"]["min_payload_kg"] = -1;
     CHECK_THAT(error_field(doc), Catch::Contains("requirements.min_payload_kg"));
   }
+  SECTION("3D check of a segment the arm does not have") {
+    doc["check"]["solid_segment"] = 4;
+    CHECK_THAT(error_field(doc), Catch::Contains("check.solid_segment"));
+  }
 }
 
 TEST_CASE("softarm design exits 2 naming the field of a bad requirements file", "[design][cli]") {

@@ -153,6 +153,22 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
                "is defined at RRA level "
             << config.check.rra_mesh_level << "; durability is a ratio to the thesis RRA at the same level)\n";
 
+  if (config.solid_check_segment > 0) {
+    // The ladder's accurate rung on the final design: one segment by the 3D FEM against the rod.
+    const int n = config.solid_check_segment;
+    std::cout << "3D check of segment " << n << " (minutes) ...\n" << std::flush;
+    run.solid_check = objectives::check_segment_in_3d(make_candidate(config, result.x), config.check, n,
+                                                      run.check.segments[static_cast<std::size_t>(n - 1)]);
+    const auto& sc = *run.solid_check;
+    std::cout << "3D check of segment " << n << " (" << sc.element << ", " << sc.dofs << " dofs, "
+              << fixed(sc.seconds, 0) << " s): at " << fixed(sc.reached_pressure_kPa, 1) << " kPa it bends "
+              << fixed(sc.bending_deg, 2) << " deg, the rod " << fixed(sc.rod_bending_deg, 2) << " deg (rod error "
+              << fixed(sc.bending_error_percent(), 1) << " %); " << config.requirements.bending_per_segment_deg
+              << " deg at " << (sc.pressure_for_target_kPa ? fixed(*sc.pressure_for_target_kPa, 1) + " kPa" : "no pressure reached")
+              << " (rod: " << (sc.rod_pressure_for_target_kPa ? fixed(*sc.rod_pressure_for_target_kPa, 1) + " kPa" : "not reached")
+              << "); path: " << sc.outcome << "\n";
+  }
+
   std::cout << "model errors (fidelity ladder, softarm fidelity):";
   for (const auto& e : model_errors_json(config.check.rra_mesh_level))
     std::cout << " " << e["what"].get<std::string>() << " by the " << e["model"].get<std::string>() << ": "

@@ -207,6 +207,10 @@ DesignConfig read_design_config(const nlohmann::json& document) {
     fine.pressure_steps = 24;
     fine.rod_nodes_per_segment = 49;
     auto k = root.object("check", "fidelity of the final design's re-check");
+    c.solid_check_segment = k.integer("solid_segment", 0, Range::closed(0, 3),
+                                      "bend this segment (1 proximal … 3 distal) of the optimum by the 3D FEM "
+                                      "(Hex20 at 2x2x2 points, level 1; minutes) and report the rod's bending error "
+                                      "against it; 0: no 3D check");
     c.check = read_model(k, fine, "check");
     for (auto* s : {&c.model, &c.check}) {
       s->working_pressure_kPa = c.requirements.max_pressure_kPa;

@@ -54,6 +54,7 @@ struct DesignConfig {
   std::string baseline_tube = "dragon_skin_30", baseline_sheath = "dragon_skin_30";
   objectives::EvaluationSettings model;     // search fidelity
   objectives::EvaluationSettings check;     // the final design's re-check (higher fidelity)
+  int solid_check_segment = 0;              // 1–3: that segment of the optimum also by the 3D FEM; 0: none
   double search_margin = 0.01;              // constraints on the search model: g + margin ≤ 0
   optimise::Options optimiser;
   std::string output_directory = "out/design";

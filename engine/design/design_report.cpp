@@ -137,6 +137,21 @@ void write_design_outputs(const DesignRun& run) {
       {"seconds", run.seconds}};
   const auto g = constraints_of(c, run.optimum, run.reference_strain);
   for (std::size_t i = 0; i < g.names.size(); ++i) summary["optimum_constraints"][g.names[i]] = g.values[i];
+  if (run.solid_check) {
+    const auto& sc = *run.solid_check;
+    const auto optional_kPa = [](const std::optional<double>& p) { return p ? nlohmann::json(*p) : nlohmann::json(); };
+    summary["optimum_solid_check"] = {{"segment", sc.segment},
+                                      {"element", sc.element},
+                                      {"dofs", sc.dofs},
+                                      {"reached_pressure_kPa", sc.reached_pressure_kPa},
+                                      {"outcome", sc.outcome},
+                                      {"bending_deg_3d", sc.bending_deg},
+                                      {"bending_deg_rod", sc.rod_bending_deg},
+                                      {"rod_bending_error_percent", sc.bending_error_percent()},
+                                      {"pressure_for_target_bending_kPa_3d", optional_kPa(sc.pressure_for_target_kPa)},
+                                      {"pressure_for_target_bending_kPa_rod", optional_kPa(sc.rod_pressure_for_target_kPa)},
+                                      {"seconds", sc.seconds}};
+  }
   write_json_file(dir, "summary.json", summary);
   write_pose_vtu(dir, run.optimum);
   // The optimum's 3D geometry (Hex8, level 1) with part ids, for ParaView next to the pose.
@@ -224,6 +239,14 @@ void write_design_outputs(const DesignRun& run) {
                 "axisymmetric FEM (level " + std::to_string(c.model.rra_mesh_level) +
                 ") for the local peaks and ballooning. Against the 3D Hex27 FEM of the thesis 3CA, the rod reaches "
                 "90 deg at 297 kPa where the 3D model does at 293.8 kPa (README, reduced model).");
+  if (run.solid_check) {
+    const auto& sc = *run.solid_check;
+    doc.paragraph("3D check of the optimum (check.solid_segment = " + std::to_string(sc.segment) + "): " + sc.element +
+                  ", " + std::to_string(sc.dofs) + " dofs, " + format_number(sc.seconds) + " s. At " +
+                  format_number(sc.reached_pressure_kPa) + " kPa the segment bends " + format_number(sc.bending_deg) +
+                  " deg in 3D and " + format_number(sc.rod_bending_deg) + " deg by the rod: the search model's error on "
+                  "this design is " + format_number(sc.bending_error_percent()) + " %. Path: " + sc.outcome + ".");
+  }
   doc.write(std::filesystem::path(dir) / "report.html");
 }
 

@@ -4,12 +4,14 @@
 // pressure–bending curves of the optimum and of the thesis design, the
 // constraint margins, the convergence history, the payload pose), summary.json
 // and the optimum's payload pose as a VTU polyline for ParaView.
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "engine/design/design_config.hpp"
 #include "engine/optimiser/optimiser.hpp"
 #include "objectives/arm_evaluation.hpp"
+#include "objectives/solid_segment_check.hpp"
 
 namespace softarm::engine {
 
@@ -27,6 +29,7 @@ struct DesignRun {
   objectives::ArmMeasures thesis, optimum, check;
   objectives::ArmMeasures finer_peaks;  // the optimum with the RRA FEM one level finer (peak sensitivity)
   double finer_reference_strain = 0;
+  std::optional<objectives::SolidSegmentCheck> solid_check;  // one segment by the 3D FEM (check.solid_segment)
   optimise::Result result;
   std::vector<HistoryPoint> history;
   double seconds = 0;

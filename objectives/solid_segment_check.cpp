@@ -1,0 +1,72 @@
+#include "objectives/solid_segment_check.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "fem/scenes/tca_scene.hpp"
+
+namespace softarm::objectives {
+namespace {
+
+// The rod's bending at pressure p, linear between its path's steps (the last step beyond them).
+double rod_bending_at(const SegmentMeasures& rod, double p) {
+  const auto& P = rod.pressure_kPa;
+  const auto& B = rod.bending_deg;
+  if (P.empty()) return 0.0;
+  if (p >= P.back()) return B.back();
+  const auto hi = std::upper_bound(P.begin(), P.end(), p);
+  if (hi == P.begin()) return B.front();
+  const std::size_t i = static_cast<std::size_t>(hi - P.begin());
+  const double t = (p - P[i - 1]) / (P[i] - P[i - 1]);
+  return B[i - 1] + t * (B[i] - B[i - 1]);
+}
+
+}  // namespace
+
+double SolidSegmentCheck::bending_error_percent() const {
+  return std::abs(bending_deg) > 1e-12 ? 100.0 * (rod_bending_deg - bending_deg) / std::abs(bending_deg) : 0.0;
+}
+
+SolidSegmentCheck check_segment_in_3d(const ArmCandidate& c, const EvaluationSettings& s, int segment,
+                                      const SegmentMeasures& rod, int mesh_level) {
+  const auto t0 = std::chrono::steady_clock::now();
+  fem::TcaSceneSpec spec;
+  spec.design = c.design.segments.at(static_cast<std::size_t>(segment - 1));
+  spec.tube_material = c.tube;
+  spec.ring_material = c.rings;
+  spec.sheath_material = c.sheath;
+  spec.mesh_level = mesh_level;
+  spec.element_order = 2;
+  spec.serendipity = true;
+  spec.integration = fem::ElementIntegration::reduced;
+  // The rod's load (arm_evaluation.cpp, bend_segment): chambers 2 and 3, gravity against the bend.
+  const double p = s.working_pressure_kPa;
+  spec.chamber_pressure_kPa = {0.0, p, p};
+  spec.gravity_m_s2 = Eigen::Vector3d(-s.gravity_m_s2, 0.0, 0.0);
+  for (int i = 1; i <= s.pressure_steps; ++i) spec.output_pressures_kPa.push_back(p * i / s.pressure_steps);
+  spec.target_bending_deg = s.target_bending_deg;
+  // As configs/tca_thesis.json: small first step (gravity preload, then the ramp), give up at
+  // 1e-3 of the load, chamber-volume control at any stall to find a ballooning limit point.
+  spec.steps.initial_increment = 0.03;
+  spec.steps.min_increment = 1e-3;
+  spec.limit.volume_control_fraction = 1.0;
+
+  const fem::TcaResult r = fem::run_tca_scene(spec);
+  SolidSegmentCheck out;
+  out.segment = segment;
+  out.element = r.element_name;
+  out.dofs = r.dofs;
+  out.reached_pressure_kPa = r.path.reached_pressure_kPa;
+  out.outcome = r.path.outcome == fem::PathOutcome::completed ? "completed" : r.path.diagnosis;
+  out.bending_deg = r.states.empty() ? 0.0 : r.states.back().bending_angle_deg;
+  for (const auto& state : r.states)  // the state at the largest pressure (volume control may pass it)
+    if (state.pressure_kPa >= out.reached_pressure_kPa - 1e-9) out.bending_deg = state.bending_angle_deg;
+  out.rod_bending_deg = rod_bending_at(rod, out.reached_pressure_kPa);
+  out.pressure_for_target_kPa = r.target_pressure_kPa;
+  if (rod.pressure_for_target_kPa >= 0) out.rod_pressure_for_target_kPa = rod.pressure_for_target_kPa;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace softarm::objectives

@@ -1,0 +1,42 @@
+#pragma once
+// The ladder's last rung for a design (issue 6: "search on a cheap level, check on
+// an accurate one, report the final design's error"): one segment of an arm
+// candidate bent by the 3D FEM exactly as the search's rod bends it (chambers 2
+// and 3 at the working pressure, gravity against the bend, top face clamped), so
+// the rod's bending of that segment can be compared with the 3D model's.
+//
+// The 3D model is Hex20/P1 at 2×2×2 Gauss points, mesh level 1, half model: on
+// the thesis 3CA it bends within 1.4–3.5 % of level 2 along the curve (README,
+// "The 3CA and SPL scenes") at about half the cost of the Hex27 default. A
+// limit point (ballooning) before the working pressure is a result: the check
+// reports the bending at the largest pressure reached and says so.
+#include <optional>
+#include <string>
+
+#include "objectives/arm_evaluation.hpp"
+
+namespace softarm::objectives {
+
+struct SolidSegmentCheck {
+  int segment = 0;                         // 1 (proximal) … 3 (distal)
+  std::string element;                     // the 3D element used
+  int dofs = 0;
+  double reached_pressure_kPa = 0;         // the working pressure, or a limit point below it
+  std::string outcome;                     // "completed", or the path's diagnosis
+  double bending_deg = 0;                  // at the reached pressure, 3D
+  double rod_bending_deg = 0;              // the search model's, at the same pressure
+  std::optional<double> pressure_for_target_kPa;      // 3D; none if not reached
+  std::optional<double> rod_pressure_for_target_kPa;  // the search model's
+  double seconds = 0;
+  /// Rod minus 3D bending at the reached pressure, relative to the 3D one.
+  double bending_error_percent() const;
+};
+
+/// Bends segment `segment` (1–3) of `candidate` by the 3D FEM under the load of `settings`
+/// (working pressure, gravity, target bending, output steps) and compares it with `rod`, that
+/// segment's measures by the search's rod (ArmMeasures::segments[segment − 1]). `mesh_level` ≥ 1.
+/// Throws fem::InputError for a design that cannot be meshed.
+SolidSegmentCheck check_segment_in_3d(const ArmCandidate& candidate, const EvaluationSettings& settings, int segment,
+                                      const SegmentMeasures& rod, int mesh_level = 1);
+
+}  // namespace softarm::objectives
