@@ -298,6 +298,8 @@ void apply_fidelity(SceneConfig& config, double target_error_percent, const std:
     config.mesh_level() = config.selection->level.mesh_level;
     config.element_order() = config.selection->level.element_order;
     config.tca.serendipity = config.spl.serendipity = config.selection->level.serendipity;
+    config.tca.integration = config.spl.integration =
+        config.selection->level.reduced_integration ? ElementIntegration::reduced : ElementIntegration::full;
   }
 }
 
