@@ -59,6 +59,8 @@ SolidSegmentCheck check_segment_in_3d(const ArmCandidate& c, const EvaluationSet
   out.dofs = r.dofs;
   out.reached_pressure_kPa = r.path.reached_pressure_kPa;
   out.outcome = r.path.outcome == fem::PathOutcome::completed ? "completed" : r.path.diagnosis;
+  out.completed = r.path.outcome == fem::PathOutcome::completed;
+  out.limit_point = r.path.outcome == fem::PathOutcome::limit_point;
   out.bending_deg = r.states.empty() ? 0.0 : r.states.back().bending_angle_deg;
   for (const auto& state : r.states)  // the state at the largest pressure (volume control may pass it)
     if (state.pressure_kPa >= out.reached_pressure_kPa - 1e-9) out.bending_deg = state.bending_angle_deg;

@@ -27,9 +27,15 @@ struct SolidSegmentCheck {
   double rod_bending_deg = 0;              // the search model's, at the same pressure
   std::optional<double> pressure_for_target_kPa;      // 3D; none if not reached
   std::optional<double> rod_pressure_for_target_kPa;  // the search model's
+  bool completed = false;                  // the 3D path reached the working pressure
+  bool limit_point = false;                // it ended at a ballooning limit point below it (else: a stall)
   double seconds = 0;
   /// Rod minus 3D bending at the reached pressure, relative to the 3D one.
   double bending_error_percent() const;
+  /// The 3D model's verdict on the two requirements it can judge: the target bending at or
+  /// below the working pressure, and the working pressure held without a limit point.
+  bool meets_bending() const { return pressure_for_target_kPa.has_value(); }
+  bool holds_working_pressure() const { return completed; }
 };
 
 /// Bends segment `segment` (1–3) of `candidate` by the 3D FEM under the load of `settings`

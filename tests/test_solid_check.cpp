@@ -39,6 +39,8 @@ TEST_CASE("3D check of a design segment bends it as the 3CA scene does and compa
   const auto check = objectives::check_segment_in_3d(candidate, settings, 3, rod);
   CAPTURE(check.element, check.outcome, check.dofs);
   CHECK(check.outcome == "completed");
+  CHECK(check.meets_bending());
+  CHECK(check.holds_working_pressure());
   CHECK(check.dofs == 10296);
   CHECK(check.reached_pressure_kPa == Approx(200).epsilon(1e-12));
   CHECK(check.bending_deg == Approx(9.963).margin(0.002));

@@ -166,7 +166,13 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
               << fixed(sc.bending_error_percent(), 1) << " %); " << config.requirements.bending_per_segment_deg
               << " deg at " << (sc.pressure_for_target_kPa ? fixed(*sc.pressure_for_target_kPa, 1) + " kPa" : "no pressure reached")
               << " (rod: " << (sc.rod_pressure_for_target_kPa ? fixed(*sc.rod_pressure_for_target_kPa, 1) + " kPa" : "not reached")
-              << "); path: " << sc.outcome << "\n";
+              << "); path: " << sc.outcome << "\n"
+              << "3D verdict on segment " << n << ": bending "
+              << (sc.meets_bending() ? "met" : "NOT met") << ", working pressure "
+              << (sc.holds_working_pressure() ? std::string("held")
+                  : sc.limit_point ? "NOT held (ballooning limit point at " + fixed(sc.reached_pressure_kPa, 1) + " kPa)"
+                                   : "not established (the 3D path stalled at " + fixed(sc.reached_pressure_kPa, 1) + " kPa)")
+              << "\n";
   }
 
   std::cout << "model errors (fidelity ladder, softarm fidelity):";

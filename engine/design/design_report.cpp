@@ -145,6 +145,8 @@ void write_design_outputs(const DesignRun& run) {
                                       {"dofs", sc.dofs},
                                       {"reached_pressure_kPa", sc.reached_pressure_kPa},
                                       {"outcome", sc.outcome},
+                                      {"meets_bending_3d", sc.meets_bending()},
+                                      {"holds_working_pressure_3d", sc.holds_working_pressure()},
                                       {"bending_deg_3d", sc.bending_deg},
                                       {"bending_deg_rod", sc.rod_bending_deg},
                                       {"rod_bending_error_percent", sc.bending_error_percent()},
@@ -245,7 +247,11 @@ void write_design_outputs(const DesignRun& run) {
                   ", " + std::to_string(sc.dofs) + " dofs, " + format_number(sc.seconds) + " s. At " +
                   format_number(sc.reached_pressure_kPa) + " kPa the segment bends " + format_number(sc.bending_deg) +
                   " deg in 3D and " + format_number(sc.rod_bending_deg) + " deg by the rod: the search model's error on "
-                  "this design is " + format_number(sc.bending_error_percent()) + " %. Path: " + sc.outcome + ".");
+                  "this design is " + format_number(sc.bending_error_percent()) + " %. Path: " + sc.outcome +
+                  ". 3D verdict: bending " + (sc.meets_bending() ? "met" : "not met") + ", working pressure " +
+                  (sc.holds_working_pressure() ? "held."
+                   : sc.limit_point            ? "not held (ballooning limit point below it)."
+                                               : "not established (the 3D path stalled below it)."));
   }
   doc.write(std::filesystem::path(dir) / "report.html");
 }
