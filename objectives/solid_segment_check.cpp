@@ -29,7 +29,8 @@ double SolidSegmentCheck::bending_error_percent() const {
 }
 
 SolidSegmentCheck check_segment_in_3d(const ArmCandidate& c, const EvaluationSettings& s, int segment,
-                                      const SegmentMeasures& rod, int mesh_level) {
+                                      const SegmentMeasures& rod, int mesh_level,
+                                      const std::function<void(double, double)>& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   fem::TcaSceneSpec spec;
   spec.design = c.design.segments.at(static_cast<std::size_t>(segment - 1));
@@ -52,7 +53,9 @@ SolidSegmentCheck check_segment_in_3d(const ArmCandidate& c, const EvaluationSet
   spec.steps.min_increment = 1e-3;
   spec.limit.volume_control_fraction = 1.0;
 
-  const fem::TcaResult r = fem::run_tca_scene(spec);
+  const fem::TcaResult r = fem::run_tca_scene(spec, [&](const fem::TcaState& state) {
+    if (progress) progress(state.pressure_kPa, state.bending_angle_deg);
+  });
   SolidSegmentCheck out;
   out.segment = segment;
   out.element = r.element_name;

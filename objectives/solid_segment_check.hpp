@@ -10,6 +10,7 @@
 // "The 3CA and SPL scenes") at about half the cost of the Hex27 default. A
 // limit point (ballooning) before the working pressure is a result: the check
 // reports the bending at the largest pressure reached and says so.
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -42,7 +43,9 @@ struct SolidSegmentCheck {
 /// (working pressure, gravity, target bending, output steps) and compares it with `rod`, that
 /// segment's measures by the search's rod (ArmMeasures::segments[segment − 1]). `mesh_level` ≥ 1.
 /// Throws fem::InputError for a design that cannot be meshed.
+/// `progress` (optional) is called with (pressure kPa, bending deg) at every output as the path goes.
 SolidSegmentCheck check_segment_in_3d(const ArmCandidate& candidate, const EvaluationSettings& settings, int segment,
-                                      const SegmentMeasures& rod, int mesh_level = 1);
+                                      const SegmentMeasures& rod, int mesh_level = 1,
+                                      const std::function<void(double, double)>& progress = {});
 
 }  // namespace softarm::objectives
