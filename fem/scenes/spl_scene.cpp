@@ -49,7 +49,8 @@ SplResult run_spl_scene(const SplSceneSpec& spec, const std::function<void(const
   const double copies = out.model.half ? 2.0 : 1.0;
   const std::vector<Material> materials = {spec.tube_material, spec.ring_material, spec.sheath_material,
                                            connector_material(spec, mesh, copies)};
-  auto elastic = make_elastic_form(mesh, materials, VolumetricTreatment::projected_dilatation, hex20_integration(mesh, spec.integration));
+  auto elastic = make_elastic_form(mesh, materials, VolumetricTreatment::projected_dilatation,
+                                   hex20_integration(mesh, spec.integration));
   out.element_name = elastic->element_name();
   LoadState load;
   load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);

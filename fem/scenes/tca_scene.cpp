@@ -73,7 +73,8 @@ TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
 
   const auto t_setup = Clock::now();
   const std::vector<Material> materials = tca_part_materials(spec);
-  auto elastic = make_elastic_form(mesh, materials, VolumetricTreatment::projected_dilatation, hex20_integration(mesh, spec.integration));
+  auto elastic = make_elastic_form(mesh, materials, VolumetricTreatment::projected_dilatation,
+                                   hex20_integration(mesh, spec.integration));
   out.element_name = elastic->element_name();
   LoadState load;
   load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
