@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 #include "fem/scenes/tca_scene.hpp"
 
@@ -26,6 +28,14 @@ double rod_bending_at(const SegmentMeasures& rod, double p) {
 
 double SolidSegmentCheck::bending_error_percent() const {
   return std::abs(bending_deg) > 1e-12 ? 100.0 * (rod_bending_deg - bending_deg) / std::abs(bending_deg) : 0.0;
+}
+
+std::string SolidSegmentCheck::working_pressure_verdict() const {
+  std::ostringstream at;
+  at << std::fixed << std::setprecision(1) << reached_pressure_kPa << " kPa)";
+  if (path == fem::PathOutcome::completed) return "held";
+  if (path == fem::PathOutcome::limit_point) return "NOT held (ballooning limit point at " + at.str();
+  return "not established (the 3D path stalled at " + at.str();
 }
 
 SolidSegmentCheck check_segment_in_3d(const ArmCandidate& c, const EvaluationSettings& s, int segment,
@@ -62,11 +72,12 @@ SolidSegmentCheck check_segment_in_3d(const ArmCandidate& c, const EvaluationSet
   out.dofs = r.dofs;
   out.reached_pressure_kPa = r.path.reached_pressure_kPa;
   out.outcome = r.path.outcome == fem::PathOutcome::completed ? "completed" : r.path.diagnosis;
-  out.completed = r.path.outcome == fem::PathOutcome::completed;
-  out.limit_point = r.path.outcome == fem::PathOutcome::limit_point;
-  out.bending_deg = r.states.empty() ? 0.0 : r.states.back().bending_angle_deg;
-  for (const auto& state : r.states)  // the state at the largest pressure (volume control may pass it)
-    if (state.pressure_kPa >= out.reached_pressure_kPa - 1e-9) out.bending_deg = state.bending_angle_deg;
+  out.path = r.path.outcome;
+  // The state at the largest pressure (volume control may pass the maximum and fall back).
+  const auto highest = std::max_element(r.states.begin(), r.states.end(), [](const auto& a, const auto& b) {
+    return a.pressure_kPa < b.pressure_kPa;
+  });
+  out.bending_deg = highest == r.states.end() ? 0.0 : highest->bending_angle_deg;
   out.rod_bending_deg = rod_bending_at(rod, out.reached_pressure_kPa);
   out.pressure_for_target_kPa = r.target_pressure_kPa;
   if (rod.pressure_for_target_kPa >= 0) out.rod_pressure_for_target_kPa = rod.pressure_for_target_kPa;

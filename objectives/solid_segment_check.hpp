@@ -14,6 +14,7 @@
 #include <optional>
 #include <string>
 
+#include "fem/scenes/pressure_path.hpp"
 #include "objectives/arm_evaluation.hpp"
 
 namespace softarm::objectives {
@@ -28,15 +29,16 @@ struct SolidSegmentCheck {
   double rod_bending_deg = 0;              // the search model's, at the same pressure
   std::optional<double> pressure_for_target_kPa;      // 3D; none if not reached
   std::optional<double> rod_pressure_for_target_kPa;  // the search model's
-  bool completed = false;                  // the 3D path reached the working pressure
-  bool limit_point = false;                // it ended at a ballooning limit point below it (else: a stall)
+  fem::PathOutcome path = fem::PathOutcome::completed;  // completed: the working pressure was reached
   double seconds = 0;
   /// Rod minus 3D bending at the reached pressure, relative to the 3D one.
   double bending_error_percent() const;
   /// The 3D model's verdict on the two requirements it can judge: the target bending at or
   /// below the working pressure, and the working pressure held without a limit point.
   bool meets_bending() const { return pressure_for_target_kPa.has_value(); }
-  bool holds_working_pressure() const { return completed; }
+  bool holds_working_pressure() const { return path == fem::PathOutcome::completed; }
+  /// "held", "NOT held (ballooning limit point at … kPa)" or "not established (… stalled at … kPa)".
+  std::string working_pressure_verdict() const;
 };
 
 /// Bends segment `segment` (1–3) of `candidate` by the 3D FEM under the load of `settings`

@@ -41,6 +41,7 @@ TEST_CASE("3D check of a design segment bends it as the 3CA scene does and compa
   CHECK(check.outcome == "completed");
   CHECK(check.meets_bending());
   CHECK(check.holds_working_pressure());
+  CHECK(check.working_pressure_verdict() == "held");
   CHECK(check.dofs == 10296);
   CHECK(check.reached_pressure_kPa == Approx(200).epsilon(1e-12));
   CHECK(check.bending_deg == Approx(9.963).margin(0.002));
@@ -50,4 +51,15 @@ TEST_CASE("3D check of a design segment bends it as the 3CA scene does and compa
   REQUIRE(check.rod_pressure_for_target_kPa);
   CHECK(*check.rod_pressure_for_target_kPa == 120);
   CHECK(check.bending_error_percent() == Approx(100 * (9.0 - check.bending_deg) / check.bending_deg).epsilon(1e-12));
+}
+
+TEST_CASE("3D check verdict names a limit point and a stall below the working pressure", "[solid_check]") {
+  objectives::SolidSegmentCheck check;
+  check.reached_pressure_kPa = 254.48;
+  check.path = fem::PathOutcome::limit_point;
+  CHECK_FALSE(check.holds_working_pressure());
+  CHECK(check.working_pressure_verdict() == "NOT held (ballooning limit point at 254.5 kPa)");
+  check.path = fem::PathOutcome::stalled;
+  CHECK_FALSE(check.holds_working_pressure());
+  CHECK(check.working_pressure_verdict() == "not established (the 3D path stalled at 254.5 kPa)");
 }

@@ -34,13 +34,8 @@ void print_solid_check(const objectives::SolidSegmentCheck& sc, double target_de
             << fixed(sc.bending_error_percent(), 1) << " %); " << target_deg << " deg at "
             << kPa_or(sc.pressure_for_target_kPa, "no pressure reached") << " (rod: "
             << kPa_or(sc.rod_pressure_for_target_kPa, "not reached") << "); path: " << sc.outcome << "\n";
-  const std::string reached = fixed(sc.reached_pressure_kPa, 1) + " kPa)";
   std::cout << "3D verdict on segment " << sc.segment << ": bending " << (sc.meets_bending() ? "met" : "NOT met")
-            << ", working pressure "
-            << (sc.holds_working_pressure() ? std::string("held")
-                : sc.limit_point            ? "NOT held (ballooning limit point at " + reached
-                                            : "not established (the 3D path stalled at " + reached)
-            << "\n";
+            << ", working pressure " << sc.working_pressure_verdict() << "\n";
 }
 
 void print_measures(const std::string& title, const objectives::ArmMeasures& m) {

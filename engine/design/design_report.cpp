@@ -248,10 +248,8 @@ void write_design_outputs(const DesignRun& run) {
                   format_number(sc.reached_pressure_kPa) + " kPa the segment bends " + format_number(sc.bending_deg) +
                   " deg in 3D and " + format_number(sc.rod_bending_deg) + " deg by the rod: the search model's error on "
                   "this design is " + format_number(sc.bending_error_percent()) + " %. Path: " + sc.outcome +
-                  ". 3D verdict: bending " + (sc.meets_bending() ? "met" : "not met") + ", working pressure " +
-                  (sc.holds_working_pressure() ? "held."
-                   : sc.limit_point            ? "not held (ballooning limit point below it)."
-                                               : "not established (the 3D path stalled below it)."));
+                  ". 3D verdict: bending " + (sc.meets_bending() ? "met" : "NOT met") + ", working pressure " +
+                  sc.working_pressure_verdict() + ".");
   }
   doc.write(std::filesystem::path(dir) / "report.html");
 }
