@@ -11,17 +11,17 @@
 
 namespace softarm::fem {
 namespace {
-/// Sets the BLAS's thread count (OpenBLAS; looked up at run time, so any BLAS links:
-/// reference BLAS has no threads to set). Factorisations get as many threads as softarm
-/// may use (--threads, SOFTARM_THREADS): a threaded OpenBLAS otherwise takes every core,
-/// and when other processes want them too (ctest -j2, two runs at once) its spinning
-/// threads thrash: a 3CA run next to a compiler spent half its time in the kernel.
-void set_blas_threads(int n) {
+/// Gives the BLAS as many threads as softarm may use (--threads, SOFTARM_THREADS).
+/// A threaded OpenBLAS otherwise takes every core, and when other processes want
+/// them too (ctest -j2, two runs at once) its spinning threads thrash: a 3CA run
+/// next to a compiler spent half its time in the kernel. Looked up at run time, so
+/// any BLAS links (reference BLAS has no threads to set).
+void match_blas_threads() {
   using SetThreads = void (*)(int);
   static const auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
   static int applied = 0;
-  if (set && applied != n) {
-    applied = n;
+  if (set && applied != thread_count()) {
+    applied = thread_count();
     set(applied);
   }
 }
@@ -112,7 +112,7 @@ bool LinearSolver::cholesky_with_shift(const SparseMatrix& K, double shift) {
 }
 
 bool LinearSolver::plain_cholesky(const SparseMatrix& K) {
-  set_blas_threads(thread_count());
+  match_blas_threads();
   ++factorizations;
   shifted_ = false;
   last_shift = 0.0;
@@ -153,11 +153,6 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) {
   // A singular matrix has no factor to solve with (UMFPACK would dereference a null
   // numeric object): the answer is "no solution", NaN, for the caller to diagnose.
   if (status_ == Status::singular) return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
-  // One BLAS thread: a supernodal solve with one right-hand side is a chain of small
-  // memory-bound dtrsv/dgemv calls, where a second thread only waits (sched_yield). Thesis
-  // 3CA, Hex20 2x2x2 level 1, 0 -> 137.9 kPa, 2 threads, idle machine, 2 runs each: system
-  // time 44 -> 21-24 s, CPU 112 -> 77-83 s, wall 61.8 -> 57.4-60.6 s, the same curve.
-  set_blas_threads(1);
   if (status_ == Status::positive_definite || shifted_)
     x = options_.upper ? Eigen::VectorXd(cholesky_upper_.solve(b)) : Eigen::VectorXd(cholesky_.solve(b));
   else
