@@ -35,6 +35,10 @@ PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolve
         result.failure = report.failure;
         result.message = report.message;
         if (!predict) return false;  // the plain start failed too: nothing else to retry
+        // Newton met only indefinite tangents: there is no stable equilibrium near this load
+        // (past a limit point), wherever it starts from; the cut-back, not a second start, is
+        // what helps. On the thesis 3CA the plain start failed too in all 4 such retries.
+        if (report.failure == Failure::unstable_branch) return false;
         continue;
       }
       previous_x = x;

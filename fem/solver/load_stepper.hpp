@@ -3,8 +3,9 @@
 // controller): lands exactly on every requested output level, grows the step
 // after easy convergence, shrinks it after hard convergence, and on any typed
 // failure restores the last converged state and cuts the step back. The
-// predictor extrapolates the last two converged states (secant); if the
-// predicted state is inadmissible the step is retried from the last state.
+// predictor extrapolates the last two converged states (secant); if Newton fails
+// from the predicted state the step is retried from the last state, except after
+// an unstable branch (only indefinite tangents: no equilibrium near that load).
 // A path that cannot be continued returns what it reached and why.
 #include <functional>
 #include <string>
