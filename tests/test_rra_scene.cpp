@@ -202,4 +202,12 @@ TEST_CASE("Newton gives up early on an unstable branch and stops at the same lim
   CHECK(guarded.path.path.failure == Failure::unstable_branch);
   CHECK(guarded.path.reached_pressure_kPa == Approx(patient.path.reached_pressure_kPa).epsilon(1e-3));
   CHECK(guarded.path.path.stats.newton_iterations < patient.path.path.stats.newton_iterations);
+  // Past a limit point no start converges: a step that fails on an unstable branch is cut back
+  // without a second start from the last converged state; other failures (the patient Newton's
+  // max_iterations) still get one.
+  INFO("second starts " << patient.path.path.stats.second_starts << " vs " << guarded.path.path.stats.second_starts
+                        << "; cut-backs " << guarded.path.path.stats.cutbacks);
+  CHECK(patient.path.path.stats.second_starts >= 1);
+  REQUIRE(guarded.path.path.stats.cutbacks >= 1);
+  CHECK(guarded.path.path.stats.second_starts == 0);
 }

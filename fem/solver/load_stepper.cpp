@@ -22,6 +22,7 @@ PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolve
   auto try_step = [&](double next_level, bool lands) {
     for (int attempt = 0; attempt < 2; ++attempt) {
       const bool predict = attempt == 0 && have_previous && level > previous_level;
+      if (attempt == 1) ++result.stats.second_starts;
       Vector trial = x;
       if (predict) trial = x + (next_level - level) / (level - previous_level) * (x - previous_x);
       problem.apply_constraints(trial, next_level);

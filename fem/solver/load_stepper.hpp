@@ -31,6 +31,7 @@ struct StepSettings {
 
 struct PathStatistics {
   int steps = 0, newton_iterations = 0, cutbacks = 0;
+  int second_starts = 0;  // steps retried from the last converged state after the predicted start failed
 };
 
 struct PathResult {
