@@ -146,6 +146,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
   out.path.stats.steps += preload_stats.steps;
   out.path.stats.newton_iterations += preload_stats.newton_iterations;
   out.path.stats.cutbacks += preload_stats.cutbacks;
+  out.path.stats.second_starts += preload_stats.second_starts;
   out.analyse_s = solver.analyse_seconds;
   out.factorize_s = solver.factorize_seconds;
   out.solve_s = solver.solve_seconds;
