@@ -9,10 +9,8 @@
 #include "fem/scenes/tca_scene.hpp"
 
 namespace softarm::objectives {
-namespace {
 
-// The rod's bending at pressure p, linear between its path's steps (the last step beyond them).
-double rod_bending_at(const SegmentMeasures& rod, double p) {
+double bending_at_pressure(const SegmentMeasures& rod, double p) {
   const auto& P = rod.pressure_kPa;
   const auto& B = rod.bending_deg;
   if (P.empty()) return 0.0;
@@ -23,8 +21,6 @@ double rod_bending_at(const SegmentMeasures& rod, double p) {
   const double t = (p - P[i - 1]) / (P[i] - P[i - 1]);
   return B[i - 1] + t * (B[i] - B[i - 1]);
 }
-
-}  // namespace
 
 double SolidSegmentCheck::bending_error_percent() const {
   return std::abs(bending_deg) > 1e-12 ? 100.0 * (rod_bending_deg - bending_deg) / std::abs(bending_deg) : 0.0;
@@ -78,7 +74,7 @@ SolidSegmentCheck check_segment_in_3d(const ArmCandidate& c, const EvaluationSet
     return a.pressure_kPa < b.pressure_kPa;
   });
   out.bending_deg = highest == r.states.end() ? 0.0 : highest->bending_angle_deg;
-  out.rod_bending_deg = rod_bending_at(rod, out.reached_pressure_kPa);
+  out.rod_bending_deg = bending_at_pressure(rod, out.reached_pressure_kPa);
   out.pressure_for_target_kPa = r.target_pressure_kPa;
   if (rod.pressure_for_target_kPa >= 0) out.rod_pressure_for_target_kPa = rod.pressure_for_target_kPa;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -41,6 +41,10 @@ struct SolidSegmentCheck {
   std::string working_pressure_verdict() const;
 };
 
+/// A segment's bending by the search model at pressure p: linear between its path's steps,
+/// the last step's beyond them.
+double bending_at_pressure(const SegmentMeasures& rod, double p_kPa);
+
 /// Bends segment `segment` (1–3) of `candidate` by the 3D FEM under the load of `settings`
 /// (working pressure, gravity, target bending, output steps) and compares it with `rod`, that
 /// segment's measures by the search's rod (ArmMeasures::segments[segment − 1]). `mesh_level` ≥ 1.

@@ -91,6 +91,15 @@ TEST_CASE("bad requirements name the field", "[design]") {
     doc["design_space"]["tube_material"]["choices"][1] = "dragon_skin_99";
     CHECK_THAT(error_field(doc), Catch::Contains("design_space.tube_material.choices[1]"));
   }
+  SECTION("correction rounds without a 3D check to correct by") {
+    doc["check"]["solid_segment"] = 0;
+    doc["check"]["corrections"] = 1;
+    CHECK_THAT(error_field(doc), Catch::Contains("check.corrections") && Catch::Contains("check.solid_segment"));
+  }
+  SECTION("too many correction rounds") {
+    doc["check"]["corrections"] = 7;
+    CHECK_THAT(error_field(doc), Catch::Contains("check.corrections") && Catch::Contains("7"));
+  }
   SECTION("unknown algorithm") {
     doc["optimiser"]["algorithm"] = "nlopt:magic";
     CHECK_THAT(error_field(doc), Catch::Contains("optimiser.algorithm"));
@@ -128,7 +137,7 @@ TEST_CASE("softarm design exits 2 naming the field of a bad requirements file", 
 
 TEST_CASE("a design that cannot be built is an infeasible evaluation with its reason", "[design]") {
   const engine::DesignConfig c = engine::read_design_config(thesis_requirements());
-  const optimise::Problem p = engine::design_problem(c, 1.0, {});
+  const optimise::Problem p = engine::design_problem(c, 1.0, {}, nullptr);
   std::vector<double> x = engine::baseline_values(c);
   for (std::size_t i = 0; i < c.variables.size(); ++i)
     if (c.variables[i].variable.name == "actuator_spacing_mm") x[i] = 0.6;  // less than the rings' protrusion

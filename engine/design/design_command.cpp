@@ -3,14 +3,13 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <map>
 #include <optional>
 
 #include "engine/design/design_problem.hpp"
 #include "engine/design/design_report.hpp"
+#include "engine/design/search_log.hpp"
 #include "engine/output_files.hpp"
 
 namespace softarm::engine {
@@ -51,6 +50,63 @@ void print_constraints(const ConstraintValues& c) {
     std::cout << "  " << std::left << std::setw(11) << c.names[i] << std::right << " margin " << std::setw(8)
               << fixed(-100 * c.values[i], 1) << " %" << (c.values[i] > 1e-6 ? "  VIOLATED" : "") << "\n";
 }
+
+// One search of the search model (corrected by `correction`) from x0; prints the optimum and its margins.
+optimise::Result search(const DesignConfig& config, double ref_strain, const SolidCorrection& correction,
+                        const std::vector<double>& x0, MeasureStore& store, SearchLog& log) {
+  const optimise::Problem problem = design_problem(config, ref_strain, correction, &store);
+  optimise::Options options = config.optimiser;
+  options.x0 = x0;
+  options.on_evaluation = [&](const optimise::Progress& p) {
+    log.record(p, problem.constraint_names, options.constraint_tolerance);
+  };
+  const optimise::Result result = optimise::minimise(problem, options);
+  std::cout << "\noptimiser: " << result.evaluations << " evaluations (" << result.cache_hits << " cache hits), "
+            << fixed(result.seconds, 1) << " s; " << result.stop_reason << "\n";
+  return result;
+}
+
+// The search model's measures of x (measured during the search, or now), corrected.
+objectives::ArmMeasures searched_measures(const DesignConfig& config, const std::vector<double>& x, MeasureStore& store) {
+  const auto found = store.find(x);
+  if (found != store.end()) return found->second;
+  return store[x] = objectives::evaluate_arm(make_candidate(config, x), config.model);
+}
+
+void print_optimum(const DesignConfig& config, const optimise::Result& result, const objectives::ArmMeasures& m,
+                   double ref_strain, const SolidCorrection& correction) {
+  std::cout << (result.feasible ? "optimal design: " : "no design meets every requirement; the closest: ")
+            << describe(config, result.x) << "\n";
+  print_measures(correction.checks ? "optimum (search model, corrected: " + correction.describe() + ")"
+                                   : std::string("optimum (search model)"),
+                 m);
+  const ConstraintValues margins = constraints_of(config, m, ref_strain);
+  print_constraints(margins);
+  if (!result.feasible) {
+    std::size_t worst = 0;
+    for (std::size_t i = 1; i < margins.values.size(); ++i)
+      if (margins.values[i] > margins.values[worst]) worst = i;
+    std::cout << "binding constraint: " << margins.names[worst] << ", violated by " << fixed(100 * margins.values[worst], 1)
+              << " % of its limit at the best design found within the bounds\n";
+  }
+}
+
+// The ladder's accurate rung on an optimum: one segment by the 3D FEM against the rod (none if it cannot run).
+std::optional<objectives::SolidSegmentCheck> check_in_3d(const DesignConfig& config, const std::vector<double>& x,
+                                                         const objectives::ArmMeasures& rod_check) {
+  const int n = config.solid_check_segment;
+  std::cout << "3D check of segment " << n << " (minutes) ...\n" << std::flush;
+  try {
+    auto sc = objectives::check_segment_in_3d(
+        make_candidate(config, x), config.check, n, rod_check.segments[static_cast<std::size_t>(n - 1)], 1,
+        [](double p, double deg) { std::cout << "  3D: " << fixed(p, 1) << " kPa, " << fixed(deg, 2) << " deg\n" << std::flush; });
+    print_solid_check(sc, config.requirements.bending_per_segment_deg);
+    return sc;
+  } catch (const std::exception& e) {  // the search's results stand; the check reports why it could not run
+    std::cout << "3D check of segment " << n << " could not run: " << e.what() << "\n";
+    return std::nullopt;
+  }
+}
 }  // namespace
 
 int run_design(const std::string& file, const DesignOverrides& overrides) {
@@ -66,7 +122,11 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
             << config.requirements.max_pressure_kPa << " kPa, length " << config.requirements.length_m << " m\n"
             << "model: reduced rod + axisymmetric RRA FEM level " << config.model.rra_mesh_level << "; optimiser "
             << config.optimiser.algorithm << ", budget " << config.optimiser.max_evaluations << " evaluations, "
-            << config.optimiser.starts << " start(s)\n";
+            << config.optimiser.starts << " start(s)";
+  if (config.solid_check_segment > 0)
+    std::cout << "; 3D check of segment " << config.solid_check_segment << ", up to " << config.solid_corrections
+              << " correction round(s)";
+  std::cout << "\n";
 
   const double ref_strain =
       objectives::durability_reference_log_strain(config.requirements.durability_reference_pressure_kPa,
@@ -83,69 +143,54 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
   print_measures("thesis design (Tables 7, 11)", run.thesis);
   print_constraints(constraints_of(config, run.thesis, ref_strain));
 
-  // Every evaluation goes to history.csv as it happens: a stopped run keeps what it computed.
-  std::ofstream history = open_output_file(config.output_directory, "history.csv");
-  history << "evaluation,phase,feasible,objective";
-  for (const auto& n : constraints_of(config, {}, ref_strain).names) history << ",g_" << n;
-  for (const auto& v : config.variables) history << "," << v.variable.name;
-  history << ",failure\n";
-  std::map<std::vector<double>, objectives::ArmMeasures> measured;
-  optimise::Problem problem = design_problem(config, ref_strain, [&](const std::vector<double>& x, const objectives::ArmMeasures& m) {
-    measured[x] = m;
-  });
-  optimise::Options options = config.optimiser;
-  options.x0 = run.thesis_x;
-  options.on_evaluation = [&](const optimise::Progress& p) {
-    bool feasible = p.value.ok;
-    double worst = -1e300;
-    std::size_t binding = 0;
-    for (std::size_t i = 0; i < p.value.constraints.size(); ++i) {
-      feasible = feasible && p.value.constraints[i] <= options.constraint_tolerance;
-      if (p.value.constraints[i] > worst) worst = p.value.constraints[i], binding = i;
+  // Search, check in 3D, and while the check finds a requirement not met, correct the search
+  // model by it and search again from the last optimum (solid_correction.hpp).
+  SearchLog log(config, ref_strain, run.history);
+  MeasureStore measured;
+  SolidCorrection correction;
+  std::vector<double> x0 = run.thesis_x;
+  std::optional<objectives::ArmMeasures> rod_check;  // the last optimum at the check fidelity, uncorrected
+  for (int round = 0;; ++round) {
+    if (round > 0) {
+      log.next_round(run.result.evaluations, "correction " + std::to_string(round) + ": ");
+      std::cout << "\ncorrection round " << round << " of at most " << config.solid_corrections
+                << ": search again from the last optimum with the search model corrected by the 3D check ("
+                << correction.describe() << ")\n";
     }
-    run.history.push_back({p.evaluation, p.value.ok ? p.value.objective : std::nan(""), feasible, p.phase});
-    std::cout << "eval " << std::setw(3) << p.evaluation << " [" << p.phase << "] ";
-    if (!p.value.ok) {
-      std::cout << "failed: " << p.value.failure_reason << "\n";
-    } else {
-      std::cout << "objective " << fixed(p.value.objective, 4) << (feasible ? "  feasible" : "  infeasible")
-                << "  (tightest: " << problem.constraint_names[binding] << " " << fixed(-100 * worst, 1)
-                << " %)  best feasible " << (std::isfinite(p.best_feasible_objective) ? fixed(p.best_feasible_objective, 4) : "none")
-                << "\n";
+    run.result = search(config, ref_strain, correction, x0, measured, log);
+    run.optimum_x = run.result.x;
+    const objectives::ArmMeasures raw = searched_measures(config, run.optimum_x, measured);
+    run.optimum = corrected(raw, correction);
+    print_optimum(config, run.result, run.optimum, ref_strain, correction);
+    rod_check = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.check);
+    run.solid_check.reset();
+    if (config.solid_check_segment > 0) run.solid_check = check_in_3d(config, run.optimum_x, *rod_check);
+    run.rounds.push_back({correction, run.optimum_x, run.optimum, run.result.feasible, run.solid_check});
+    if (round == config.solid_corrections || !run.solid_check) break;
+    if (run.solid_check->meets_bending() && run.solid_check->holds_working_pressure()) {
+      std::cout << "the 3D check meets bending and holds the working pressure: no correction needed\n";
+      break;
     }
-    history << p.evaluation << "," << p.phase << "," << feasible << "," << (p.value.ok ? p.value.objective : std::nan(""));
-    for (std::size_t i = 0; i < problem.constraint_names.size(); ++i)
-      history << "," << (i < p.value.constraints.size() ? p.value.constraints[i] : std::nan(""));
-    for (double v : p.x) history << "," << v;
-    history << ",\"" << p.value.failure_reason << "\"\n";
-    history.flush();
-  };
-  const optimise::Result result = optimise::minimise(problem, options);
-  run.result = result;
-  run.optimum_x = result.x;
-  std::cout << "\noptimiser: " << result.evaluations << " evaluations (" << result.cache_hits << " cache hits), "
-            << fixed(result.seconds, 1) << " s; " << result.stop_reason << "\n";
-  const auto found = measured.find(result.x);
-  run.optimum = found != measured.end() ? found->second
-                                        : objectives::evaluate_arm(make_candidate(config, result.x), config.model);
-  std::cout << (result.feasible ? "optimal design: " : "no design meets every requirement; the closest: ")
-            << describe(config, result.x) << "\n";
-  print_measures("optimum (search model)", run.optimum);
-  const ConstraintValues margins = constraints_of(config, run.optimum, ref_strain);
-  print_constraints(margins);
-  if (!result.feasible) {
-    std::size_t worst = 0;
-    for (std::size_t i = 1; i < margins.values.size(); ++i)
-      if (margins.values[i] > margins.values[worst]) worst = i;
-    std::cout << "binding constraint: " << margins.names[worst] << ", violated by " << fixed(100 * margins.values[worst], 1)
-              << " % of its limit at the best design found within the bounds\n";
+    if (!run.result.feasible) {
+      std::cout << "no correction round: the search model finds no feasible design even uncorrected by 3D\n";
+      break;
+    }
+    const SolidCorrection next = updated_correction(correction, *run.solid_check, raw, config.check.working_pressure_kPa);
+    if (next.checks == correction.checks) {
+      std::cout << "no correction round: the 3D path stalled, so it measured neither bending at the working pressure "
+                   "nor a limit point\n";
+      break;
+    }
+    correction = next;
+    x0 = run.optimum_x;
   }
 
-  // Re-check at the higher fidelity and report the difference.
+  // Re-check the final optimum at the higher fidelity and report the difference.
   run.check_reference_strain = ref_strain;
-  run.check = objectives::evaluate_arm(make_candidate(config, result.x), config.check);
+  run.check = corrected(*rod_check, correction);
   print_measures("optimum re-checked (" + std::to_string(config.check.rod_nodes_per_segment) + " rod nodes per segment, " +
-                     std::to_string(config.check.pressure_steps) + " pressure steps)",
+                     std::to_string(config.check.pressure_steps) + " pressure steps" +
+                     (correction.checks ? ", corrected" : "") + ")",
                  run.check);
   const ConstraintValues checked = constraints_of(config, run.check, run.check_reference_strain);
   print_constraints(checked);
@@ -157,7 +202,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
   // The local peaks come from a stress singularity (the groove lip): how they move one RRA mesh level finer.
   objectives::EvaluationSettings finer = config.check;
   finer.rra_mesh_level = config.check.rra_mesh_level + 1;
-  run.finer_peaks = objectives::evaluate_arm(make_candidate(config, result.x), finer);
+  run.finer_peaks = objectives::evaluate_arm(make_candidate(config, run.optimum_x), finer);
   run.finer_reference_strain = objectives::durability_reference_log_strain(
       config.requirements.durability_reference_pressure_kPa, finer.rra_mesh_level);
   std::cout << "local peaks one RRA mesh level finer (level " << finer.rra_mesh_level << "): burst utilisation "
@@ -168,20 +213,19 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
             << " (the groove lip is a stress singularity: its peaks grow with refinement, so the burst criterion "
                "is defined at RRA level "
             << config.check.rra_mesh_level << "; durability is a ratio to the thesis RRA at the same level)\n";
-
-  if (config.solid_check_segment > 0) {
-    // The ladder's accurate rung on the final design: one segment by the 3D FEM against the rod.
-    const int n = config.solid_check_segment;
-    std::cout << "3D check of segment " << n << " (minutes) ...\n" << std::flush;
-    try {
-      run.solid_check = objectives::check_segment_in_3d(
-          make_candidate(config, result.x), config.check, n, run.check.segments[static_cast<std::size_t>(n - 1)], 1,
-          [](double p, double deg) { std::cout << "  3D: " << fixed(p, 1) << " kPa, " << fixed(deg, 2) << " deg\n" << std::flush; });
-    } catch (const std::exception& e) {  // the search's results stand; the check reports why it could not run
-      std::cout << "3D check of segment " << n << " could not run: " << e.what() << "\n";
+  if (run.rounds.size() > 1) {
+    std::cout << "check and correct, round by round:\n";
+    for (std::size_t k = 0; k < run.rounds.size(); ++k) {
+      const auto& r = run.rounds[k];
+      std::cout << "  round " << k << ": correction " << r.correction.describe() << "; mass " << fixed(r.optimum.mass_kg, 3)
+                << " kg" << (r.feasible ? "" : " (infeasible)");
+      if (r.solid_check)
+        std::cout << "; 3D: bending " << (r.solid_check->meets_bending() ? "met" : "NOT met") << ", working pressure "
+                  << r.solid_check->working_pressure_verdict() << ", rod error " << fixed(r.solid_check->bending_error_percent(), 1)
+                  << " %";
+      std::cout << "\n";
     }
   }
-  if (run.solid_check) print_solid_check(*run.solid_check, config.requirements.bending_per_segment_deg);
 
   std::cout << "model errors (fidelity ladder, softarm fidelity):";
   for (const auto& e : model_errors_json(config.check.rra_mesh_level))

@@ -211,6 +211,13 @@ DesignConfig read_design_config(const nlohmann::json& document) {
                                       "bend this segment (1 proximal … 3 distal) of the optimum by the 3D FEM "
                                       "(Hex20 at 2x2x2 points, level 1; minutes) and report the rod's bending error "
                                       "against it; 0: no 3D check");
+    c.solid_corrections = k.integer("corrections", 0, Range::closed(0, 3),
+                                    "check and correct: while the 3D check finds a requirement not met, correct the "
+                                    "search model by it (bending and burst, multiplicative) and search again from the "
+                                    "last optimum, at most this many times; each round costs a search and a 3D check");
+    if (c.solid_corrections > 0 && c.solid_check_segment == 0)
+      throw fem::InputError(k.field("corrections"), "= " + std::to_string(c.solid_corrections) +
+                                                         " needs a 3D check to correct by: set check.solid_segment to 1, 2 or 3");
     c.check = read_model(k, fine, "check");
     for (auto* s : {&c.model, &c.check}) {
       s->working_pressure_kPa = c.requirements.max_pressure_kPa;

@@ -55,6 +55,8 @@ struct DesignConfig {
   objectives::EvaluationSettings model;     // search fidelity
   objectives::EvaluationSettings check;     // the final design's re-check (higher fidelity)
   int solid_check_segment = 0;              // 1–3: that segment of the optimum also by the 3D FEM; 0: none
+  int solid_corrections = 0;                // searches again with the search model corrected by the 3D check
+                                            // (solid_correction.hpp), at most this many times
   double search_margin = 0.01;              // constraints on the search model: g + margin ≤ 0
   optimise::Options optimiser;
   std::string output_directory = "out/design";

@@ -77,18 +77,22 @@ double objective_of(const DesignConfig& config, const objectives::ArmMeasures& m
 }
 
 optimise::Problem design_problem(const DesignConfig& config, double reference_strain,
-                                 std::function<void(const std::vector<double>&, const objectives::ArmMeasures&)> measured) {
+                                 const SolidCorrection& correction, MeasureStore* store) {
   optimise::Problem p;
   for (const auto& v : config.variables) p.variables.push_back(v.variable);
   p.constraint_names = constraints_of(config, {}, reference_strain).names;
-  p.evaluate = [&config, reference_strain, measured](const std::vector<double>& x) {
+  p.evaluate = [&config, reference_strain, correction, store](const std::vector<double>& x) {
     optimise::Evaluation e;
     try {
-      const objectives::ArmMeasures m = objectives::evaluate_arm(make_candidate(config, x), config.model);
+      const auto known = store ? store->find(x) : MeasureStore::iterator{};
+      const objectives::ArmMeasures raw = store && known != store->end()
+                                              ? known->second
+                                              : objectives::evaluate_arm(make_candidate(config, x), config.model);
+      if (store) store->emplace(x, raw);
+      const objectives::ArmMeasures m = corrected(raw, correction);
       e.objective = objective_of(config, m, reference_strain);
       e.constraints = constraints_of(config, m, reference_strain).values;
       for (double& g : e.constraints) g += config.search_margin;  // design margin for the re-check
-      if (measured) measured(x, m);
     } catch (const fem::InputError& err) {
       e.ok = false;  // a geometry that cannot be built is an infeasible point, with the reason
       e.failure_reason = err.what();

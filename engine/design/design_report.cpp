@@ -99,6 +99,23 @@ std::vector<std::vector<std::string>> constraint_rows(const DesignConfig& c, con
   }
   return rows;
 }
+
+nlohmann::json solid_check_json(const objectives::SolidSegmentCheck& sc) {
+  const auto optional_kPa = [](const std::optional<double>& p) { return p ? nlohmann::json(*p) : nlohmann::json(); };
+  return {{"segment", sc.segment},
+          {"element", sc.element},
+          {"dofs", sc.dofs},
+          {"reached_pressure_kPa", sc.reached_pressure_kPa},
+          {"outcome", sc.outcome},
+          {"meets_bending_3d", sc.meets_bending()},
+          {"holds_working_pressure_3d", sc.holds_working_pressure()},
+          {"bending_deg_3d", sc.bending_deg},
+          {"bending_deg_rod", sc.rod_bending_deg},
+          {"rod_bending_error_percent", sc.bending_error_percent()},
+          {"pressure_for_target_bending_kPa_3d", optional_kPa(sc.pressure_for_target_kPa)},
+          {"pressure_for_target_bending_kPa_rod", optional_kPa(sc.rod_pressure_for_target_kPa)},
+          {"seconds", sc.seconds}};
+}
 }  // namespace
 
 nlohmann::json model_errors_json(int rra_mesh_level) {
@@ -137,23 +154,17 @@ void write_design_outputs(const DesignRun& run) {
       {"seconds", run.seconds}};
   const auto g = constraints_of(c, run.optimum, run.reference_strain);
   for (std::size_t i = 0; i < g.names.size(); ++i) summary["optimum_constraints"][g.names[i]] = g.values[i];
-  if (run.solid_check) {
-    const auto& sc = *run.solid_check;
-    const auto optional_kPa = [](const std::optional<double>& p) { return p ? nlohmann::json(*p) : nlohmann::json(); };
-    summary["optimum_solid_check"] = {{"segment", sc.segment},
-                                      {"element", sc.element},
-                                      {"dofs", sc.dofs},
-                                      {"reached_pressure_kPa", sc.reached_pressure_kPa},
-                                      {"outcome", sc.outcome},
-                                      {"meets_bending_3d", sc.meets_bending()},
-                                      {"holds_working_pressure_3d", sc.holds_working_pressure()},
-                                      {"bending_deg_3d", sc.bending_deg},
-                                      {"bending_deg_rod", sc.rod_bending_deg},
-                                      {"rod_bending_error_percent", sc.bending_error_percent()},
-                                      {"pressure_for_target_bending_kPa_3d", optional_kPa(sc.pressure_for_target_kPa)},
-                                      {"pressure_for_target_bending_kPa_rod", optional_kPa(sc.rod_pressure_for_target_kPa)},
-                                      {"seconds", sc.seconds}};
-  }
+  if (run.solid_check) summary["optimum_solid_check"] = solid_check_json(*run.solid_check);
+  summary["check_and_correct"] = nlohmann::json::array();
+  for (const SearchRound& r : run.rounds)
+    summary["check_and_correct"].push_back(
+        {{"correction", {{"bending_factor", r.correction.bending_factor},
+                         {"burst_utilisation_factor", r.correction.burst_factor},
+                         {"from_3d_checks", r.correction.checks}}},
+         {"optimum", design_json(c, r.optimum_x)},
+         {"feasible_corrected_search_model", r.feasible},
+         {"mass_kg", r.optimum.mass_kg},
+         {"solid_check", r.solid_check ? solid_check_json(*r.solid_check) : nlohmann::json()}});
   write_json_file(dir, "summary.json", summary);
   write_pose_vtu(dir, run.optimum);
   // The optimum's 3D geometry (Hex8, level 1) with part ids, for ParaView next to the pose.
@@ -250,6 +261,24 @@ void write_design_outputs(const DesignRun& run) {
                   "this design is " + format_number(sc.bending_error_percent()) + " %. Path: " + sc.outcome +
                   ". 3D verdict: bending " + (sc.meets_bending() ? "met" : "NOT met") + ", working pressure " +
                   sc.working_pressure_verdict() + ".");
+  }
+  if (run.rounds.size() > 1) {
+    doc.heading(2, "Check and correct");
+    doc.paragraph("Each round searches with the search model corrected by the 3D checks so far (bending and burst "
+                  "utilisation, multiplicative; engine/design/solid_correction.hpp), from the last optimum, and checks "
+                  "the new optimum in 3D. The last round's design is the one reported above.");
+    std::vector<std::vector<std::string>> round_rows;
+    for (std::size_t k = 0; k < run.rounds.size(); ++k) {
+      const SearchRound& r = run.rounds[k];
+      const auto& sc = r.solid_check;
+      round_rows.push_back({std::to_string(k), r.correction.describe(), format_number(r.optimum.mass_kg) + (r.feasible ? "" : " (infeasible)"),
+                            sc ? format_number(sc->bending_deg) + " deg at " + format_number(sc->reached_pressure_kPa) + " kPa" : "-",
+                            sc ? format_number(sc->bending_error_percent()) : "-",
+                            sc ? std::string(sc->meets_bending() ? "met" : "NOT met") : "-",
+                            sc ? sc->working_pressure_verdict() : "-"});
+    }
+    doc.table({"round", "correction", "mass (kg)", "3D bending", "rod error (%)", "3D bending verdict", "3D working pressure"},
+              round_rows, "check and correct, round by round");
   }
   doc.write(std::filesystem::path(dir) / "report.html");
 }

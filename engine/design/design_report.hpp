@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/design/design_config.hpp"
+#include "engine/design/solid_correction.hpp"
 #include "engine/optimiser/optimiser.hpp"
 #include "objectives/arm_evaluation.hpp"
 #include "objectives/solid_segment_check.hpp"
@@ -22,14 +23,24 @@ struct HistoryPoint {
   std::string phase;
 };
 
+/// One search of a check-and-correct run and the 3D check of its optimum.
+struct SearchRound {
+  SolidCorrection correction;         // the search model's, during this search
+  std::vector<double> optimum_x;
+  objectives::ArmMeasures optimum;    // search model, corrected
+  bool feasible = false;
+  std::optional<objectives::SolidSegmentCheck> solid_check;
+};
+
 struct DesignRun {
   const DesignConfig* config = nullptr;
   double reference_strain = 0, check_reference_strain = 0;
   std::vector<double> thesis_x, optimum_x;
-  objectives::ArmMeasures thesis, optimum, check;
+  objectives::ArmMeasures thesis, optimum, check;  // optimum, check: corrected by the last round's correction
   objectives::ArmMeasures finer_peaks;  // the optimum with the RRA FEM one level finer (peak sensitivity)
   double finer_reference_strain = 0;
-  std::optional<objectives::SolidSegmentCheck> solid_check;  // one segment by the 3D FEM (check.solid_segment)
+  std::optional<objectives::SolidSegmentCheck> solid_check;  // the final optimum's segment by the 3D FEM (check.solid_segment)
+  std::vector<SearchRound> rounds;  // the first search, then each correction round (check.corrections)
   optimise::Result result;
   std::vector<HistoryPoint> history;
   double seconds = 0;
