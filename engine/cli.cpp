@@ -213,6 +213,8 @@ int run_cli(int argc, char** argv) {
   design->add_option("--max-evaluations", design_overrides.max_evaluations,
                      "evaluation budget (overrides optimiser.max_evaluations)")
       ->check(CLI::Range(1, 100000));
+  design->add_flag("--fresh", design_overrides.fresh,
+                   "discard the evaluations and 3D checks of an earlier run in the output directory instead of resuming");
   StudyOptions study_options;
   auto* study = app.add_subcommand("study", "run parameter studies from JSON study configs and write their design-rule "
                                             "reports (e.g. configs/studies); resumes; mpirun -np N spreads the points");

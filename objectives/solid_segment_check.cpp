@@ -34,6 +34,41 @@ std::string SolidSegmentCheck::working_pressure_verdict() const {
   return "not established (the 3D path stalled at " + at.str();
 }
 
+nlohmann::json to_json(const SolidSegmentCheck& c) {
+  const auto optional_kPa = [](const std::optional<double>& p) { return p ? nlohmann::json(*p) : nlohmann::json(); };
+  return {{"segment", c.segment},
+          {"element", c.element},
+          {"dofs", c.dofs},
+          {"reached_pressure_kPa", c.reached_pressure_kPa},
+          {"outcome", c.outcome},
+          {"path", fem::to_string(c.path)},
+          {"bending_deg_3d", c.bending_deg},
+          {"bending_deg_rod", c.rod_bending_deg},
+          {"pressure_for_target_bending_kPa_3d", optional_kPa(c.pressure_for_target_kPa)},
+          {"pressure_for_target_bending_kPa_rod", optional_kPa(c.rod_pressure_for_target_kPa)},
+          {"seconds", c.seconds}};
+}
+
+SolidSegmentCheck solid_check_from_json(const nlohmann::json& j) {
+  const auto optional_kPa = [&j](const char* key) {
+    return j.at(key).is_null() ? std::optional<double>() : std::optional<double>(j.at(key).get<double>());
+  };
+  SolidSegmentCheck c;
+  c.segment = j.at("segment").get<int>();
+  c.element = j.at("element").get<std::string>();
+  c.dofs = j.at("dofs").get<int>();
+  c.reached_pressure_kPa = j.at("reached_pressure_kPa").get<double>();
+  c.outcome = j.at("outcome").get<std::string>();
+  for (const auto o : {fem::PathOutcome::completed, fem::PathOutcome::limit_point, fem::PathOutcome::stalled})
+    if (j.at("path").get<std::string>() == fem::to_string(o)) c.path = o;
+  c.bending_deg = j.at("bending_deg_3d").get<double>();
+  c.rod_bending_deg = j.at("bending_deg_rod").get<double>();
+  c.pressure_for_target_kPa = optional_kPa("pressure_for_target_bending_kPa_3d");
+  c.rod_pressure_for_target_kPa = optional_kPa("pressure_for_target_bending_kPa_rod");
+  c.seconds = j.at("seconds").get<double>();
+  return c;
+}
+
 SolidSegmentCheck check_segment_in_3d(const ArmCandidate& c, const EvaluationSettings& s, int segment,
                                       const SegmentMeasures& rod, int mesh_level,
                                       const std::function<void(double, double)>& progress) {

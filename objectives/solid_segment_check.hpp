@@ -11,6 +11,7 @@
 // limit point (ballooning) before the working pressure is a result: the check
 // reports the bending at the largest pressure reached and says so.
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
@@ -40,6 +41,11 @@ struct SolidSegmentCheck {
   /// "held", "NOT held (ballooning limit point at … kPa)" or "not established (… stalled at … kPa)".
   std::string working_pressure_verdict() const;
 };
+
+/// Every field as JSON (the unset optional pressures as null), and back: exactly, so that a
+/// resumed design run (engine/design/design_checkpoint.hpp) reads the check it wrote.
+nlohmann::json to_json(const SolidSegmentCheck& check);
+SolidSegmentCheck solid_check_from_json(const nlohmann::json& j);
 
 /// A segment's bending by the search model at pressure p: linear between its path's steps,
 /// the last step's beyond them.

@@ -3,6 +3,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -29,6 +31,14 @@ void write_durably(const std::filesystem::path& file, const std::string& text) {
 }
 
 }  // namespace
+
+std::string fingerprint_of(const nlohmann::json& what) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a, 64 bit
+  for (unsigned char c : what.dump()) h = (h ^ c) * 1099511628211ull;
+  char buffer[17];
+  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(h));
+  return buffer;
+}
 
 ResultsStore::ResultsStore(std::filesystem::path file, const std::string& study, const std::string& fingerprint,
                            bool fresh)

@@ -15,6 +15,9 @@
 
 namespace softarm::studies {
 
+/// The fingerprint of everything that changes a result's numbers: FNV-1a of its canonical JSON.
+std::string fingerprint_of(const nlohmann::json& what);
+
 class ResultsStore {
  public:
   /// Opens (or creates) `file` for a study with `fingerprint`; `fresh` discards

@@ -7,6 +7,7 @@
 #include "fem/core/input_error.hpp"
 #include "fem/core/json_reader.hpp"
 #include "fem/scenes/scene_config.hpp"
+#include "studies/results_store.hpp"
 #include "studies/study_points.hpp"
 
 namespace softarm::studies {
@@ -142,14 +143,6 @@ ThesisFinding read_thesis(JsonReader thesis, const std::string& rule_output, con
   return t;
 }
 
-// FNV-1a of the canonical JSON of everything that changes a point's numbers.
-std::string fingerprint_of(const json& what) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : what.dump()) h = (h ^ c) * 1099511628211ull;
-  char buffer[17];
-  std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(h));
-  return buffer;
-}
 
 }  // namespace
 

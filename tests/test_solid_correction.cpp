@@ -6,7 +6,13 @@
 // (0, 0), (150, 50), (300, 120), (344.7, 140) kPa/deg, burst utilisation 0.9 at
 // the working pressure 344.7 kPa. A 3D path that balloons at 300 kPa having
 // bent 80 deg gives β_θ = 80/120 and β_u = (344.7/300)/0.9.
+#include <unistd.h>
+
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "engine/design/design_problem.hpp"
@@ -14,9 +20,14 @@
 #include "fem/core/json_reader.hpp"
 
 using namespace softarm;
+namespace fs = std::filesystem;
 
 namespace {
 constexpr double working_kPa = 344.7;
+
+nlohmann::json thesis_requirements() {
+  return fem::load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/thesis_requirements.json");
+}
 
 objectives::ArmMeasures searched() {
   objectives::ArmMeasures m;
@@ -78,24 +89,67 @@ TEST_CASE("a stalled 3D path measures nothing and leaves the correction as it wa
   CHECK(c.describe() == "none");
 }
 
-TEST_CASE("the corrected design problem reuses measured designs and tightens the bending constraint", "[design][correction]") {
-  const engine::DesignConfig config = engine::read_design_config(
-      fem::load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/thesis_requirements.json"));
+TEST_CASE("corrected constraints are the constraints of the corrected measures", "[design][correction]") {
+  const engine::DesignConfig config = engine::read_design_config(thesis_requirements());
+  engine::SolidCorrection c;
+  c.bending_factor = 0.7, c.burst_factor = 1.2, c.checks = 1;
+  const auto direct = engine::constraints_of(config, engine::corrected(searched(), c), 1.0);
+  const auto transformed = engine::corrected_constraints(engine::constraints_of(config, searched(), 1.0), c);
+  REQUIRE(direct.names == transformed.names);
+  for (std::size_t i = 0; i < direct.values.size(); ++i) CHECK(transformed.values[i] == Approx(direct.values[i]));
+  CHECK(direct.values[2] == Approx(1 - 0.7 * 140 / 90.0));
+  CHECK(direct.values[3] == Approx(1.2 * 0.9 - 1));
+}
+
+TEST_CASE("a 3D check reads back from JSON exactly", "[design][correction]") {
+  auto c = check_of_segment_3(fem::PathOutcome::limit_point, 305.8123456789, 84.4);
+  c.element = "H2s/P1", c.dofs = 51384, c.outcome = "limit point", c.rod_bending_deg = 122.4, c.seconds = 950.25;
+  c.rod_pressure_for_target_kPa = 1.0 / 3.0;
+  const auto back = objectives::solid_check_from_json(nlohmann::json::parse(objectives::to_json(c).dump()));
+  CHECK(back.path == c.path);
+  CHECK(back.reached_pressure_kPa == c.reached_pressure_kPa);
+  CHECK(back.rod_pressure_for_target_kPa == c.rod_pressure_for_target_kPa);
+  CHECK_FALSE(back.pressure_for_target_kPa.has_value());
+  CHECK(objectives::to_json(back) == objectives::to_json(c));
+}
+
+TEST_CASE("the design problem keeps its measurements in the checkpoint and a corrected search reads them back", "[design][correction]") {
+  const fs::path dir = fs::temp_directory_path() / ("softarm_checkpoint_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const nlohmann::json document = thesis_requirements();
+  const engine::DesignConfig config = engine::read_design_config(document);
   const std::vector<double> x = engine::baseline_values(config);
-  engine::MeasureStore store;
-  const optimise::Evaluation plain = engine::design_problem(config, 1.0, {}, &store).evaluate(x);
-  REQUIRE(plain.ok);
-  REQUIRE(store.size() == 1);
+  optimise::Evaluation plain;
+  {
+    engine::DesignCheckpoint checkpoint(dir, document, false);
+    plain = engine::design_problem(config, 1.0, {}, &checkpoint).evaluate(x);
+    REQUIRE(plain.ok);
+  }
+  const auto lines = [&dir] {
+    std::ifstream in(dir / "checkpoint.jsonl");
+    return std::count(std::istreambuf_iterator<char>(in), {}, '\n');
+  };
+  REQUIRE(lines() == 2);  // the header and the evaluation
+  engine::DesignCheckpoint resumed(dir, document, false);
+  CHECK(resumed.resumed_evaluations() == 1);
   engine::SolidCorrection half;
-  half.bending_factor = 0.5;
-  half.checks = 1;
-  const optimise::Evaluation corrected = engine::design_problem(config, 1.0, half, &store).evaluate(x);
+  half.bending_factor = 0.5, half.checks = 1;
+  const optimise::Evaluation corrected = engine::design_problem(config, 1.0, half, &resumed).evaluate(x);
   REQUIRE(corrected.ok);
-  CHECK(store.size() == 1);  // measured once
+  CHECK(lines() == 2);  // read back, not measured again
   CHECK(corrected.objective == plain.objective);
   // g_bending = 1 − β_θ·θ_min/θ_target + margin (design_problem.hpp)
   const double m = config.search_margin;
   const double theta_over_target = 1 + m - plain.constraints[2];
   CHECK(corrected.constraints[2] == Approx(1 + m - 0.5 * theta_over_target));
-  CHECK(corrected.constraints[3] == Approx(plain.constraints[3]));  // burst uncorrected (β_u = 1)
+  CHECK(corrected.constraints[3] == plain.constraints[3]);  // burst uncorrected (β_u = 1)
+  // The optimiser's settings are not in the fingerprint; the model's are.
+  nlohmann::json other_budget = document, other_model = document;
+  other_budget["optimiser"]["max_evaluations"] = 7;
+  CHECK(engine::DesignCheckpoint(dir, other_budget, false).resumed_evaluations() == 1);
+  other_model["model"]["pressure_steps"] = 13;
+  CHECK_THROWS_WITH(engine::DesignCheckpoint(dir, other_model, false), Catch::Contains("--fresh"));
+  CHECK(engine::DesignCheckpoint(dir, other_model, true).resumed_evaluations() == 0);
+  fs::remove_all(dir);
 }

@@ -11,6 +11,7 @@
 #include "engine/design/design_report.hpp"
 #include "engine/design/search_log.hpp"
 #include "engine/output_files.hpp"
+#include "fem/core/json_reader.hpp"
 
 namespace softarm::engine {
 namespace {
@@ -53,8 +54,8 @@ void print_constraints(const ConstraintValues& c) {
 
 // One search of the search model (corrected by `correction`) from x0; prints the optimum and its margins.
 optimise::Result search(const DesignConfig& config, double ref_strain, const SolidCorrection& correction,
-                        const std::vector<double>& x0, MeasureStore& store, SearchLog& log) {
-  const optimise::Problem problem = design_problem(config, ref_strain, correction, &store);
+                        const std::vector<double>& x0, DesignCheckpoint& checkpoint, SearchLog& log) {
+  const optimise::Problem problem = design_problem(config, ref_strain, correction, &checkpoint);
   optimise::Options options = config.optimiser;
   options.x0 = x0;
   options.on_evaluation = [&](const optimise::Progress& p) {
@@ -64,13 +65,6 @@ optimise::Result search(const DesignConfig& config, double ref_strain, const Sol
   std::cout << "\noptimiser: " << result.evaluations << " evaluations (" << result.cache_hits << " cache hits), "
             << fixed(result.seconds, 1) << " s; " << result.stop_reason << "\n";
   return result;
-}
-
-// The search model's measures of x (measured during the search, or now), corrected.
-objectives::ArmMeasures searched_measures(const DesignConfig& config, const std::vector<double>& x, MeasureStore& store) {
-  const auto found = store.find(x);
-  if (found != store.end()) return found->second;
-  return store[x] = objectives::evaluate_arm(make_candidate(config, x), config.model);
 }
 
 void print_optimum(const DesignConfig& config, const optimise::Result& result, const objectives::ArmMeasures& m,
@@ -91,21 +85,29 @@ void print_optimum(const DesignConfig& config, const optimise::Result& result, c
   }
 }
 
-// The ladder's accurate rung on an optimum: one segment by the 3D FEM against the rod (none if it cannot run).
+// The ladder's accurate rung on an optimum: one segment by the 3D FEM against the rod (none if it
+// cannot run), or the check the checkpoint holds from an earlier run.
 std::optional<objectives::SolidSegmentCheck> check_in_3d(const DesignConfig& config, const std::vector<double>& x,
-                                                         const objectives::ArmMeasures& rod_check) {
+                                                         const objectives::ArmMeasures& rod_check,
+                                                         DesignCheckpoint& checkpoint) {
   const int n = config.solid_check_segment;
-  std::cout << "3D check of segment " << n << " (minutes) ...\n" << std::flush;
-  try {
-    auto sc = objectives::check_segment_in_3d(
-        make_candidate(config, x), config.check, n, rod_check.segments[static_cast<std::size_t>(n - 1)], 1,
-        [](double p, double deg) { std::cout << "  3D: " << fixed(p, 1) << " kPa, " << fixed(deg, 2) << " deg\n" << std::flush; });
-    print_solid_check(sc, config.requirements.bending_per_segment_deg);
-    return sc;
-  } catch (const std::exception& e) {  // the search's results stand; the check reports why it could not run
-    std::cout << "3D check of segment " << n << " could not run: " << e.what() << "\n";
-    return std::nullopt;
+  std::optional<objectives::SolidSegmentCheck> sc = checkpoint.solid_check(x);
+  if (sc) {
+    std::cout << "3D check of segment " << n << ": read from " << checkpoint.file().string() << "\n";
+  } else {
+    std::cout << "3D check of segment " << n << " (minutes) ...\n" << std::flush;
+    try {
+      sc = objectives::check_segment_in_3d(
+          make_candidate(config, x), config.check, n, rod_check.segments[static_cast<std::size_t>(n - 1)], 1,
+          [](double p, double deg) { std::cout << "  3D: " << fixed(p, 1) << " kPa, " << fixed(deg, 2) << " deg\n" << std::flush; });
+      checkpoint.add(x, *sc);
+    } catch (const std::exception& e) {  // the search's results stand; the check reports why it could not run
+      std::cout << "3D check of segment " << n << " could not run: " << e.what() << "\n";
+      return std::nullopt;
+    }
   }
+  print_solid_check(*sc, config.requirements.bending_per_segment_deg);
+  return sc;
 }
 }  // namespace
 
@@ -116,6 +118,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
   if (!overrides.algorithm.empty()) config.optimiser.algorithm = overrides.algorithm;
   if (overrides.max_evaluations > 0) config.optimiser.max_evaluations = overrides.max_evaluations;
   std::filesystem::create_directories(config.output_directory);
+  DesignCheckpoint checkpoint(config.output_directory, fem::load_json_file(file), overrides.fresh);
   std::cout << "softarm design: " << file << "\nobjective: " << config.objective << "; requirements: mass <= "
             << config.requirements.max_mass_kg << " kg, payload >= " << config.requirements.min_payload_kg
             << " kg, bending >= " << config.requirements.bending_per_segment_deg << " deg per segment at "
@@ -127,6 +130,10 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     std::cout << "; 3D check of segment " << config.solid_check_segment << ", up to " << config.solid_corrections
               << " correction round(s)";
   std::cout << "\n";
+  if (checkpoint.resumed_evaluations() + checkpoint.resumed_solid_checks() > 0)
+    std::cout << "resuming: " << checkpoint.resumed_evaluations() << " evaluations and " << checkpoint.resumed_solid_checks()
+              << " 3D check(s) of an earlier run are read from " << checkpoint.file().string()
+              << " instead of computed (--fresh discards them)\n";
 
   const double ref_strain =
       objectives::durability_reference_log_strain(config.requirements.durability_reference_pressure_kPa,
@@ -146,7 +153,6 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
   // Search, check in 3D, and while the check finds a requirement not met, correct the search
   // model by it and search again from the last optimum (solid_correction.hpp).
   SearchLog log(config, ref_strain, run.history);
-  MeasureStore measured;
   SolidCorrection correction;
   std::vector<double> x0 = run.thesis_x;
   std::optional<objectives::ArmMeasures> rod_check;  // the last optimum at the check fidelity, uncorrected
@@ -157,14 +163,14 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
                 << ": search again from the last optimum with the search model corrected by the 3D check ("
                 << correction.describe() << ")\n";
     }
-    run.result = search(config, ref_strain, correction, x0, measured, log);
+    run.result = search(config, ref_strain, correction, x0, checkpoint, log);
     run.optimum_x = run.result.x;
-    const objectives::ArmMeasures raw = searched_measures(config, run.optimum_x, measured);
+    const objectives::ArmMeasures raw = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.model);
     run.optimum = corrected(raw, correction);
     print_optimum(config, run.result, run.optimum, ref_strain, correction);
     rod_check = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.check);
     run.solid_check.reset();
-    if (config.solid_check_segment > 0) run.solid_check = check_in_3d(config, run.optimum_x, *rod_check);
+    if (config.solid_check_segment > 0) run.solid_check = check_in_3d(config, run.optimum_x, *rod_check, checkpoint);
     run.rounds.push_back({correction, run.optimum_x, run.optimum, run.result.feasible, run.solid_check});
     if (round == config.solid_corrections || !run.solid_check) break;
     if (run.solid_check->meets_bending() && run.solid_check->holds_working_pressure()) {

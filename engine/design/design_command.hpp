@@ -13,6 +13,7 @@ namespace softarm::engine {
 struct DesignOverrides {
   std::string output_directory, algorithm;
   int max_evaluations = 0;
+  bool fresh = false;  // discard the checkpoint of an earlier run instead of resuming (design_checkpoint.hpp)
 };
 
 /// Returns the process exit code (0: a design was returned, feasible or not, as printed).

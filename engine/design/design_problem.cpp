@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "engine/design/design_measures.hpp"
@@ -76,26 +77,38 @@ double objective_of(const DesignConfig& config, const objectives::ArmMeasures& m
   return config.maximise ? -v : v;
 }
 
+ConstraintValues corrected_constraints(ConstraintValues raw, const SolidCorrection& c) {
+  for (std::size_t i = 0; i < raw.names.size(); ++i) {
+    double& g = raw.values[i];
+    if (raw.names[i] == "bending") g = 1 - c.bending_factor * (1 - g);  // 1 − β_θ·θ/θ_target
+    if (raw.names[i] == "burst") g = c.burst_factor * (g + 1) - 1;      // β_u·u − 1
+  }
+  return raw;
+}
+
 optimise::Problem design_problem(const DesignConfig& config, double reference_strain,
-                                 const SolidCorrection& correction, MeasureStore* store) {
+                                 const SolidCorrection& correction, DesignCheckpoint* checkpoint) {
   optimise::Problem p;
   for (const auto& v : config.variables) p.variables.push_back(v.variable);
   p.constraint_names = constraints_of(config, {}, reference_strain).names;
-  p.evaluate = [&config, reference_strain, correction, store](const std::vector<double>& x) {
-    optimise::Evaluation e;
-    try {
-      const auto known = store ? store->find(x) : MeasureStore::iterator{};
-      const objectives::ArmMeasures raw = store && known != store->end()
-                                              ? known->second
-                                              : objectives::evaluate_arm(make_candidate(config, x), config.model);
-      if (store) store->emplace(x, raw);
-      const objectives::ArmMeasures m = corrected(raw, correction);
-      e.objective = objective_of(config, m, reference_strain);
-      e.constraints = constraints_of(config, m, reference_strain).values;
+  p.evaluate = [&config, reference_strain, correction, checkpoint, names = p.constraint_names](const std::vector<double>& x) {
+    std::optional<optimise::Evaluation> raw = checkpoint ? checkpoint->evaluation(x) : std::nullopt;
+    if (!raw) {
+      raw.emplace();
+      try {
+        const objectives::ArmMeasures m = objectives::evaluate_arm(make_candidate(config, x), config.model);
+        raw->objective = objective_of(config, m, reference_strain);
+        raw->constraints = constraints_of(config, m, reference_strain).values;
+      } catch (const fem::InputError& err) {
+        raw->ok = false;  // a geometry that cannot be built is an infeasible point, with the reason
+        raw->failure_reason = err.what();
+      }
+      if (checkpoint) checkpoint->add(x, *raw);
+    }
+    optimise::Evaluation e = *raw;
+    if (e.ok) {
+      e.constraints = corrected_constraints({names, raw->constraints}, correction).values;
       for (double& g : e.constraints) g += config.search_margin;  // design margin for the re-check
-    } catch (const fem::InputError& err) {
-      e.ok = false;  // a geometry that cannot be built is an infeasible point, with the reason
-      e.failure_reason = err.what();
     }
     return e;
   };

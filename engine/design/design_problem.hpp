@@ -10,10 +10,10 @@
 //   durability  ε_peak / (ε_ref·r) − 1    (ε_ref: thesis RRA at its cycling pressure; r the allowed
 //                                          ratio for the required life, 1 without a strain–life curve)
 // plus any extra bounds on named measures (design_measures.hpp), relative to |limit|.
-#include <map>
 #include <string>
 #include <vector>
 
+#include "engine/design/design_checkpoint.hpp"
 #include "engine/design/design_config.hpp"
 #include "engine/design/solid_correction.hpp"
 #include "engine/optimiser/optimiser.hpp"
@@ -35,16 +35,15 @@ ConstraintValues constraints_of(const DesignConfig& config, const objectives::Ar
 /// The value the optimiser minimises (a maximised measure negated).
 double objective_of(const DesignConfig& config, const objectives::ArmMeasures& m, double reference_strain);
 
-/// The search model's measures by design vector: every successful evaluation of a run, kept for
-/// the report and shared by its searches (a correction round changes the constraints, not the
-/// measures, so a design measured before is not measured again).
-using MeasureStore = std::map<std::vector<double>, objectives::ArmMeasures>;
+/// The constraints with the correction applied (bending and burst; solid_correction.hpp):
+/// the same values as constraints_of(corrected(m)), from constraints_of(m).
+ConstraintValues corrected_constraints(ConstraintValues raw, const SolidCorrection& correction);
 
 /// The optimiser's problem: the objective and constraints g + config.search_margin ≤ 0 of the
-/// search model's measures, corrected by `correction` (solid_correction.hpp). `store` (optional)
-/// is looked up before a design is measured and receives every new measurement.
+/// search model's measures, constraints corrected by `correction`. `checkpoint` (optional) is
+/// looked up before a design is measured and keeps every new measurement, uncorrected.
 optimise::Problem design_problem(const DesignConfig& config, double reference_strain,
-                                 const SolidCorrection& correction, MeasureStore* store);
+                                 const SolidCorrection& correction, DesignCheckpoint* checkpoint);
 
 /// "ring_count = 30, taper_ratio = 0.5, ..., tube_material = dragon_skin_30".
 std::string describe(const DesignConfig& config, const std::vector<double>& x);

@@ -1,0 +1,74 @@
+// `softarm design` resumes a stopped run (engine/design/design_checkpoint.hpp):
+// a run with a budget of 3 evaluations stands for one stopped after 3, and a
+// rerun with a budget of 5 must read those 3 back from checkpoint.jsonl
+// (saying so), compute only 2 more, and log the same first 3 evaluations.
+// Model: the thesis requirements with the 3D check off (seconds per run).
+#include <unistd.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fem/core/json_reader.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> lines_of(const fs::path& file) {
+  std::vector<std::string> lines;
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+int run_design(const fs::path& config, const fs::path& out, int budget, const fs::path& log) {
+  const std::string cmd = std::string(SOFTARM_BINARY) + " design " + config.string() + " -o " + out.string() +
+                          " --max-evaluations " + std::to_string(budget) + " > " + log.string() + " 2>&1";
+  return WEXITSTATUS(std::system(cmd.c_str()));
+}
+}  // namespace
+
+TEST_CASE("softarm design resumes from its checkpoint and computes only what is new", "[design][cli][resume]") {
+  const fs::path dir = fs::temp_directory_path() / ("softarm_design_resume_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  auto doc = softarm::fem::load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/thesis_requirements.json");
+  doc["check"]["solid_segment"] = 0;
+  doc["check"]["corrections"] = 0;
+  std::ofstream(dir / "requirements.json") << doc.dump();
+  const fs::path out = dir / "out";
+
+  REQUIRE(run_design(dir / "requirements.json", out, 3, dir / "first.log") == 0);
+  const std::vector<std::string> first_history = lines_of(out / "history.csv");
+  REQUIRE(first_history.size() == 4);  // header and 3 evaluations
+  CHECK(lines_of(out / "checkpoint.jsonl").size() == 4);  // header and 3 evaluations
+
+  REQUIRE(run_design(dir / "requirements.json", out, 5, dir / "second.log") == 0);
+  const std::string second = read_text(dir / "second.log");
+  INFO(second);
+  CHECK_THAT(second, Catch::Contains("resuming: 3 evaluations and 0 3D check(s)"));
+  const std::vector<std::string> history = lines_of(out / "history.csv");
+  REQUIRE(history.size() == 6);
+  CHECK(std::equal(first_history.begin(), first_history.end(), history.begin()));
+  CHECK(lines_of(out / "checkpoint.jsonl").size() == 6);  // only the 2 new evaluations were added
+
+  // A changed model is refused by name rather than mixed in.
+  doc["model"]["pressure_steps"] = 13;
+  std::ofstream(dir / "changed.json") << doc.dump();
+  CHECK(run_design(dir / "changed.json", out, 3, dir / "changed.log") != 0);
+  CHECK_THAT(read_text(dir / "changed.log"), Catch::Contains("--fresh"));
+  fs::remove_all(dir);
+}
