@@ -178,7 +178,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
       break;
     }
     if (!run.result.feasible) {
-      std::cout << "no correction round: the search model finds no feasible design even uncorrected by 3D\n";
+      std::cout << "no correction round: the search found no design that meets every requirement of its own model\n";
       break;
     }
     const SolidCorrection next = updated_correction(correction, *run.solid_check, raw, config.check.working_pressure_kPa);
