@@ -182,11 +182,15 @@ void write_design_outputs(const DesignRun& run) {
   }
   doc.table({"variable", "optimum", "thesis", "bounds"}, rows);
   doc.heading(2, "Constraints and margins");
-  doc.table({"constraint", "optimum", "margin"}, constraint_rows(c, run.optimum, run.reference_strain), "optimum, search model");
-  doc.table({"constraint", "thesis design", "margin"}, constraint_rows(c, run.thesis, run.reference_strain), "thesis design, same model");
+  const bool corrected = !run.rounds.empty() && run.rounds.back().correction.checks > 0;
+  doc.table({"constraint", "optimum", "margin"}, constraint_rows(c, run.optimum, run.reference_strain),
+            corrected ? "optimum, search model corrected by the 3D check (" + run.rounds.back().correction.describe() + ")"
+                      : std::string("optimum, search model"));
+  doc.table({"constraint", "thesis design", "margin"}, constraint_rows(c, run.thesis, run.reference_strain),
+            corrected ? "thesis design, search model (uncorrected)" : "thesis design, same model");
   doc.table({"constraint", "optimum re-checked", "margin"}, constraint_rows(c, run.check, run.check_reference_strain),
             "optimum at the check fidelity (" + std::to_string(c.check.rod_nodes_per_segment) + " rod nodes per segment, " +
-                std::to_string(c.check.pressure_steps) + " pressure steps)");
+                std::to_string(c.check.pressure_steps) + " pressure steps" + (corrected ? ", corrected" : "") + ")");
   doc.paragraph("Local peaks one RRA mesh level finer: burst utilisation " + format_number(run.finer_peaks.burst_utilisation) +
                 " (" + run.finer_peaks.burst_governing + "), durability strain ratio " +
                 format_number(run.finer_peaks.durability_log_strain / run.finer_reference_strain) +
