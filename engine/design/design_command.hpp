@@ -2,9 +2,13 @@
 // `softarm design <requirements.json>`: the main job. Evaluates the thesis
 // design, searches the design space with the configured optimiser on the
 // reduced model (printing every evaluation and appending it to history.csv as
-// it goes), re-checks the optimum at the check fidelity, prints the optimal
-// parameters and every constraint's margin, and writes report.html (SVG plots),
-// summary.json and the optimum's payload pose as VTU.
+// it goes), checks one segment of the optimum by the 3D FEM and, while that
+// check finds a requirement not met, corrects the search model by it and
+// searches again (check.corrections; solid_correction.hpp), re-checks the
+// final optimum at the check fidelity, prints the optimal parameters and every
+// constraint's margin, and writes report.html (SVG plots), summary.json and the
+// optimum's payload pose as VTU. A rerun resumes from the checkpoint of a
+// stopped one (design_checkpoint.hpp).
 #include <string>
 
 namespace softarm::engine {
