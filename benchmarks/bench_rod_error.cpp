@@ -1,0 +1,100 @@
+// The rod's bending error on optimised designs, and what mends it (README,
+// "Check and correct"): the distal segment of each design bent by
+//   - the search's rod (objectives::segment_rod's section, 17 nodes),
+//   - the same rod with RodPiece::force_factor set to the lone RRA's
+//     axisymmetric FEM calibration up to the 3D pressure (fem::calibrate_rra),
+//   - with --with-3d, the 3D FEM (objectives::check_segment_in_3d: Hex20 at
+//     2x2x2 points, level 1; minutes per design),
+// all at the pressure where the main job's 3D checks stopped (the working
+// pressure, or their limit point). The designs are the thesis', the thesis
+// geometry with a Dragon Skin 20 sheath, and the optimised designs of the main
+// job (rounds 0 and 1, and the other machine's optimum).
+//
+//   build/benchmarks/bench_rod_error [--with-3d]
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "engine/design/design_config.hpp"
+#include "engine/design/design_problem.hpp"
+#include "fem/core/json_reader.hpp"
+#include "fem/reduced/arm_rod.hpp"
+#include "fem/reduced/rra_calibration.hpp"
+#include "objectives/solid_segment_check.hpp"
+
+using namespace softarm;
+
+namespace {
+struct Design {
+  const char* name;
+  std::vector<double> x;  // the design variables in design_variable_names() order; materials: 0 DS30, 1 DS20
+  double pressure_kPa;    // where the 3D check stopped
+};
+
+// The distal segment's rod bending at p (gravity against the bend, as the design's bending scene), deg.
+double rod_bending_deg(const objectives::ArmCandidate& c, double p_kPa, const fem::ForceFactor* factor) {
+  fem::ArmRodSpec spec;
+  spec.tube = c.tube, spec.sheath = c.sheath, spec.rings = c.rings;
+  spec.nodes_per_segment = 17;
+  fem::RodPiece piece;
+  piece.kind = fem::RodPiece::Kind::tca;
+  piece.design = c.design.segments[2];
+  if (factor) piece.force_factor = *factor;
+  spec.pieces = {piece};
+  const fem::ArmRod rod(spec);
+  fem::RodLoad load;
+  load.chamber_pressure_kPa = {{0.0, p_kPa, p_kPa}};
+  load.gravity_m_s2 = {-9.80665, 0.0};
+  const fem::RodState st = rod.follow(load, 12);
+  return rod.tip_rotation(st, load) * 180 / 3.14159265358979323846;
+}
+
+// The lone RRA of the distal segment in the axisymmetric FEM up to p: its force factor c(p).
+fem::RraCalibration lone_rra(const objectives::ArmCandidate& c, double p_kPa) {
+  fem::RraSceneSpec spec;
+  spec.design = c.design.segments[2].actuator;
+  spec.tube_material = c.tube;
+  spec.ring_material = c.rings;
+  spec.mesh_level = 1;
+  spec.path.max_pressure_kPa = p_kPa;
+  for (int k = 1; k <= 8; ++k) spec.path.output_pressures_kPa.push_back(p_kPa * k / 8);
+  return fem::calibrate_rra(spec);
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  const bool with_3d = argc > 1 && std::strcmp(argv[1], "--with-3d") == 0;
+  const engine::DesignConfig config = engine::read_design_config(
+      fem::load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/thesis_requirements.json"));
+  std::vector<double> thesis_ds20 = engine::baseline_values(config);
+  thesis_ds20.back() = 1;
+  const std::vector<Design> designs = {
+      {"thesis (DS30/DS30)", engine::baseline_values(config), 309.1},
+      {"thesis geometry, DS30/DS20", thesis_ds20, 309.1},
+      {"round 0, 1.364 kg (DS30/DS20)", {0.350108, 0.180914, 35, 0.343385, 4.37683, 0.523542, 0, 1}, 254.5},
+      {"round 1, 0.971 kg (DS20/DS20)", {0.336163, 0.167693, 21, 0.263945, 3.92867, 0.695315, 1, 1}, 344.7},
+      {"1.458 kg, other machine (DS30/DS20)", {0.341, 0.246, 34, 0.363, 3.71, 0.485, 0, 1}, 305.8}};
+  std::printf("%-38s %8s %10s %12s %10s  lone RRA c(p) at p\n", "design (distal segment)", "p (kPa)", "rod (deg)",
+              "rod c(p)", "3D (deg)");
+  for (const Design& d : designs) {
+    const objectives::ArmCandidate c = engine::make_candidate(config, d.x);
+    const fem::RraCalibration cal = lone_rra(c, d.pressure_kPa);
+    const double rod = rod_bending_deg(c, d.pressure_kPa, nullptr);
+    const double calibrated = rod_bending_deg(c, d.pressure_kPa, &cal.force_factor);
+    std::string solid = "-";
+    if (with_3d) {
+      const objectives::ArmMeasures m = objectives::evaluate_arm(c, config.check);
+      const auto sc = objectives::check_segment_in_3d(c, config.check, 3, m.segments[2]);
+      const double at = objectives::bending_at_pressure(m.segments[2], sc.reached_pressure_kPa);
+      char buffer[96];
+      std::snprintf(buffer, sizeof buffer, "%.2f at %.1f kPa (rod there %.2f), %.0f s", sc.bending_deg,
+                    sc.reached_pressure_kPa, at, sc.seconds);
+      solid = buffer;
+    }
+    std::printf("%-38s %8.1f %10.2f %12.2f %10s  %.3f (%s)\n", d.name, d.pressure_kPa, rod, calibrated, solid.c_str(),
+                cal.force_factor.at(d.pressure_kPa), cal.outcome.c_str());
+    std::fflush(stdout);
+  }
+}
