@@ -113,12 +113,13 @@ std::optional<objectives::SolidSegmentCheck> check_in_3d(const DesignConfig& con
 
 int run_design(const std::string& file, const DesignOverrides& overrides) {
   const auto t0 = Clock::now();
-  DesignConfig config = load_design_config(file);
+  const nlohmann::json document = fem::load_json_file(file);  // read once: the config and the checkpoint's fingerprint
+  DesignConfig config = read_design_config(document);
   if (!overrides.output_directory.empty()) config.output_directory = overrides.output_directory;
   if (!overrides.algorithm.empty()) config.optimiser.algorithm = overrides.algorithm;
   if (overrides.max_evaluations > 0) config.optimiser.max_evaluations = overrides.max_evaluations;
   std::filesystem::create_directories(config.output_directory);
-  DesignCheckpoint checkpoint(config.output_directory, fem::load_json_file(file), overrides.fresh);
+  DesignCheckpoint checkpoint(config.output_directory, document, overrides.fresh);
   std::cout << "softarm design: " << file << "\nobjective: " << config.objective << "; requirements: mass <= "
             << config.requirements.max_mass_kg << " kg, payload >= " << config.requirements.min_payload_kg
             << " kg, bending >= " << config.requirements.bending_per_segment_deg << " deg per segment at "
@@ -169,11 +170,11 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     run.optimum = corrected(raw, correction);
     print_optimum(config, run.result, run.optimum, ref_strain, correction);
     rod_check = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.check);
-    run.solid_check.reset();
-    if (config.solid_check_segment > 0) run.solid_check = check_in_3d(config, run.optimum_x, *rod_check, checkpoint);
-    run.rounds.push_back({correction, run.optimum_x, run.optimum, run.result.feasible, run.solid_check});
-    if (round == config.solid_corrections || !run.solid_check) break;
-    if (run.solid_check->meets_bending() && run.solid_check->holds_working_pressure()) {
+    std::optional<objectives::SolidSegmentCheck> check;
+    if (config.solid_check_segment > 0) check = check_in_3d(config, run.optimum_x, *rod_check, checkpoint);
+    run.rounds.push_back({correction, run.optimum_x, run.optimum, run.result.feasible, check});
+    if (round == config.solid_corrections || !check) break;
+    if (check->meets_bending() && check->holds_working_pressure()) {
       std::cout << "the 3D check meets bending and holds the working pressure: no correction needed\n";
       break;
     }
@@ -181,7 +182,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
       std::cout << "no correction round: the search found no design that meets every requirement of its own model\n";
       break;
     }
-    const SolidCorrection next = updated_correction(correction, *run.solid_check, raw, config.check.working_pressure_kPa);
+    const SolidCorrection next = updated_correction(correction, *check, raw, config.check.working_pressure_kPa);
     if (next.checks == correction.checks) {
       std::cout << "no correction round: the 3D path stalled, so it measured neither bending at the working pressure "
                    "nor a limit point\n";

@@ -254,6 +254,4 @@ DesignConfig read_design_config(const nlohmann::json& document) {
   return c;
 }
 
-DesignConfig load_design_config(const std::string& file_name) { return read_design_config(fem::load_json_file(file_name)); }
-
 }  // namespace softarm::engine

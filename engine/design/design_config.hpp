@@ -66,6 +66,5 @@ struct DesignConfig {
 const std::vector<std::string>& design_variable_names();
 
 DesignConfig read_design_config(const nlohmann::json& document);
-DesignConfig load_design_config(const std::string& file_name);
 
 }  // namespace softarm::engine

@@ -124,6 +124,11 @@ nlohmann::json model_errors_json(int rra_mesh_level) {
   return out;
 }
 
+const std::optional<objectives::SolidSegmentCheck>& DesignRun::solid_check() const {
+  static const std::optional<objectives::SolidSegmentCheck> none;
+  return rounds.empty() ? none : rounds.back().solid_check;
+}
+
 void write_design_outputs(const DesignRun& run) {
   const DesignConfig& c = *run.config;
   const std::string& dir = c.output_directory;
@@ -146,7 +151,7 @@ void write_design_outputs(const DesignRun& run) {
       {"seconds", run.seconds}};
   const auto g = constraints_of(c, run.optimum, run.reference_strain);
   for (std::size_t i = 0; i < g.names.size(); ++i) summary["optimum_constraints"][g.names[i]] = g.values[i];
-  if (run.solid_check) summary["optimum_solid_check"] = solid_check_json(*run.solid_check);
+  if (run.solid_check()) summary["optimum_solid_check"] = solid_check_json(*run.solid_check());
   summary["check_and_correct"] = nlohmann::json::array();
   for (const SearchRound& r : run.rounds)
     summary["check_and_correct"].push_back(
@@ -248,8 +253,8 @@ void write_design_outputs(const DesignRun& run) {
                 "axisymmetric FEM (level " + std::to_string(c.model.rra_mesh_level) +
                 ") for the local peaks and ballooning. Against the 3D FEM of the thesis 3CA (Hex20 level 2), the rod "
                 "reaches 90 deg at 297.2 kPa where the 3D model does at 287.3 kPa (README, reduced model).");
-  if (run.solid_check) {
-    const auto& sc = *run.solid_check;
+  if (run.solid_check()) {
+    const auto& sc = *run.solid_check();
     doc.paragraph("3D check of the optimum (check.solid_segment = " + std::to_string(sc.segment) + "): " + sc.element +
                   ", " + std::to_string(sc.dofs) + " dofs, " + format_number(sc.seconds) + " s. At " +
                   format_number(sc.reached_pressure_kPa) + " kPa the segment bends " + format_number(sc.bending_deg) +

@@ -39,8 +39,9 @@ struct DesignRun {
   objectives::ArmMeasures thesis, optimum, check;  // optimum, check: corrected by the last round's correction
   objectives::ArmMeasures finer_peaks;  // the optimum with the RRA FEM one level finer (peak sensitivity)
   double finer_reference_strain = 0;
-  std::optional<objectives::SolidSegmentCheck> solid_check;  // the final optimum's segment by the 3D FEM (check.solid_segment)
   std::vector<SearchRound> rounds;  // the first search, then each correction round (check.corrections)
+  /// The final optimum's segment by the 3D FEM (check.solid_segment): the last round's check.
+  const std::optional<objectives::SolidSegmentCheck>& solid_check() const;
   optimise::Result result;
   std::vector<HistoryPoint> history;
   double seconds = 0;
