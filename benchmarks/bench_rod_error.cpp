@@ -10,7 +10,11 @@
 // geometry with a Dragon Skin 20 sheath, and the optimised designs of the main
 // job (rounds 0 and 1, and the other machine's optimum).
 //
-//   build/benchmarks/bench_rod_error [--with-3d]
+//   build/benchmarks/bench_rod_error [--with-3d] [--design N]
+//
+// --design N (1-5) runs only the N-th design; with --with-3d it also prints the
+// 3D path's bending at every output beside the rod's at the same pressure, so
+// the error can be followed along the curve, not only at its end.
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -65,7 +69,12 @@ fem::RraCalibration lone_rra(const objectives::ArmCandidate& c, double p_kPa) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool with_3d = argc > 1 && std::strcmp(argv[1], "--with-3d") == 0;
+  bool with_3d = false;
+  std::size_t only = 0;  // 1-based; 0: every design
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--with-3d") == 0) with_3d = true;
+    else if (std::strcmp(argv[i], "--design") == 0 && i + 1 < argc) only = std::stoul(argv[++i]);
+  }
   const engine::DesignConfig config = engine::read_design_config(
       fem::load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/thesis_requirements.json"));
   std::vector<double> thesis_ds20 = engine::baseline_values(config);
@@ -78,7 +87,9 @@ int main(int argc, char** argv) {
       {"1.458 kg, other machine (DS30/DS20)", {0.341, 0.246, 34, 0.363, 3.71, 0.485, 0, 1}, 305.8}};
   std::printf("%-38s %8s %10s %12s %10s  lone RRA c(p) at p\n", "design (distal segment)", "p (kPa)", "rod (deg)",
               "rod c(p)", "3D (deg)");
-  for (const Design& d : designs) {
+  for (std::size_t n = 0; n < designs.size(); ++n) {
+    if (only != 0 && n + 1 != only) continue;
+    const Design& d = designs[n];
     const objectives::ArmCandidate c = engine::make_candidate(config, d.x);
     const fem::RraCalibration cal = lone_rra(c, d.pressure_kPa);
     const double rod = rod_bending_deg(c, d.pressure_kPa, nullptr);
@@ -86,7 +97,14 @@ int main(int argc, char** argv) {
     std::string solid = "-";
     if (with_3d) {
       const objectives::ArmMeasures m = objectives::evaluate_arm(c, config.check);
-      const auto sc = objectives::check_segment_in_3d(c, config.check, 3, m.segments[2]);
+      const auto curve = [&](double p, double deg) {
+        if (only == 0) return;
+        const double r = objectives::bending_at_pressure(m.segments[2], p);
+        std::printf("  3D path: %7.1f kPa  3D %7.2f deg  rod %7.2f deg  rod error %+6.1f %%\n", p, deg, r,
+                    deg > 0 ? 100 * (r - deg) / deg : 0.0);
+        std::fflush(stdout);
+      };
+      const auto sc = objectives::check_segment_in_3d(c, config.check, 3, m.segments[2], 1, curve);
       const double at = objectives::bending_at_pressure(m.segments[2], sc.reached_pressure_kPa);
       char buffer[96];
       std::snprintf(buffer, sizeof buffer, "%.2f at %.1f kPa (rod there %.2f), %.0f s", sc.bending_deg,
