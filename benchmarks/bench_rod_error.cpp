@@ -3,18 +3,25 @@
 //   - the search's rod (objectives::segment_rod's section, 17 nodes),
 //   - the same rod with RodPiece::force_factor set to the lone RRA's
 //     axisymmetric FEM calibration up to the 3D pressure (fem::calibrate_rra),
+//   - the rod with ring-confined tube walls (ArmRodSpec::ring_confinement,
+//     fem/reduced/confined_wall.hpp),
 //   - with --with-3d, the 3D FEM (objectives::check_segment_in_3d: Hex20 at
 //     2x2x2 points, level 1; minutes per design),
 // all at the pressure where the main job's 3D checks stopped (the working
 // pressure, or their limit point). The designs are the thesis', the thesis
 // geometry with a Dragon Skin 20 sheath, and the optimised designs of the main
-// job (rounds 0 and 1, and the other machine's optimum).
+// job (rounds 0 and 1, and the other machine's optimum). Without --with-3d the
+// 3D column is the one these runs recorded (README table), and the last lines
+// give the ratio 3D/rod per design: check and correct's zeroth-order factor
+// carries from one design to the next only as far as that ratio is constant.
 //
 //   build/benchmarks/bench_rod_error [--with-3d] [--design N]
 //
 // --design N (1-5) runs only the N-th design; with --with-3d it also prints the
 // 3D path's bending at every output beside the rod's at the same pressure, so
 // the error can be followed along the curve, not only at its end.
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -35,11 +42,14 @@ struct Design {
   const char* name;
   std::vector<double> x;  // the design variables in design_variable_names() order; materials: 0 DS30, 1 DS20
   double pressure_kPa;    // where the 3D check stopped
+  double recorded_3d_deg; // the 3D bending there (bench_rod_error --with-3d, Hex20 2x2x2 level 1)
 };
 
 // The distal segment's rod bending at p (gravity against the bend, as the design's bending scene), deg.
-double rod_bending_deg(const objectives::ArmCandidate& c, double p_kPa, const fem::ForceFactor* factor) {
+double rod_bending_deg(const objectives::ArmCandidate& c, double p_kPa, const fem::ForceFactor* factor,
+                       bool confined = false) {
   fem::ArmRodSpec spec;
+  spec.ring_confinement = confined;
   spec.tube = c.tube, spec.sheath = c.sheath, spec.rings = c.rings;
   spec.nodes_per_segment = 17;
   fem::RodPiece piece;
@@ -80,13 +90,14 @@ int main(int argc, char** argv) {
   std::vector<double> thesis_ds20 = engine::baseline_values(config);
   thesis_ds20.back() = 1;
   const std::vector<Design> designs = {
-      {"thesis (DS30/DS30)", engine::baseline_values(config), 309.1},
-      {"thesis geometry, DS30/DS20", thesis_ds20, 309.1},
-      {"round 0, 1.364 kg (DS30/DS20)", {0.350108, 0.180914, 35, 0.343385, 4.37683, 0.523542, 0, 1}, 254.5},
-      {"round 1, 0.971 kg (DS20/DS20)", {0.336163, 0.167693, 21, 0.263945, 3.92867, 0.695315, 1, 1}, 344.7},
-      {"1.458 kg, other machine (DS30/DS20)", {0.341, 0.246, 34, 0.363, 3.71, 0.485, 0, 1}, 305.8}};
-  std::printf("%-38s %8s %10s %12s %10s  lone RRA c(p) at p\n", "design (distal segment)", "p (kPa)", "rod (deg)",
-              "rod c(p)", "3D (deg)");
+      {"thesis (DS30/DS30)", engine::baseline_values(config), 309.1, 99.1},
+      {"thesis geometry, DS30/DS20", thesis_ds20, 309.1, 80.4},
+      {"round 0, 1.364 kg (DS30/DS20)", {0.350108, 0.180914, 35, 0.343385, 4.37683, 0.523542, 0, 1}, 254.5, 75.8},
+      {"round 1, 0.971 kg (DS20/DS20)", {0.336163, 0.167693, 21, 0.263945, 3.92867, 0.695315, 1, 1}, 344.7, 78.4},
+      {"1.458 kg, other machine (DS30/DS20)", {0.341, 0.246, 34, 0.363, 3.71, 0.485, 0, 1}, 305.8, 84.4}};
+  std::printf("%-38s %8s %10s %10s %10s %10s  lone RRA c(p) at p\n", "design (distal segment)", "p (kPa)",
+              "rod (deg)", "rod c(p)", "confined", "3D (deg)");
+  std::vector<std::array<double, 2>> ratios;  // 3D/rod, 3D/confined rod
   for (std::size_t n = 0; n < designs.size(); ++n) {
     if (only != 0 && n + 1 != only) continue;
     const Design& d = designs[n];
@@ -94,7 +105,9 @@ int main(int argc, char** argv) {
     const fem::RraCalibration cal = lone_rra(c, d.pressure_kPa);
     const double rod = rod_bending_deg(c, d.pressure_kPa, nullptr);
     const double calibrated = rod_bending_deg(c, d.pressure_kPa, &cal.force_factor);
-    std::string solid = "-";
+    const double confined = rod_bending_deg(c, d.pressure_kPa, nullptr, true);
+    ratios.push_back({d.recorded_3d_deg / rod, d.recorded_3d_deg / confined});
+    std::string solid = std::to_string(d.recorded_3d_deg).substr(0, 4) + " (recorded)";
     if (with_3d) {
       const objectives::ArmMeasures m = objectives::evaluate_arm(c, config.check);
       const auto curve = [&](double p, double deg) {
@@ -111,8 +124,20 @@ int main(int argc, char** argv) {
                     sc.reached_pressure_kPa, at, sc.seconds);
       solid = buffer;
     }
-    std::printf("%-38s %8.1f %10.2f %12.2f %10s  %.3f (%s)\n", d.name, d.pressure_kPa, rod, calibrated, solid.c_str(),
-                cal.force_factor.at(d.pressure_kPa), cal.outcome.c_str());
+    std::printf("%-38s %8.1f %10.2f %10.2f %10.2f %10s  %.3f (%s)\n", d.name, d.pressure_kPa, rod, calibrated, confined,
+                solid.c_str(), cal.force_factor.at(d.pressure_kPa), cal.outcome.c_str());
     std::fflush(stdout);
+  }
+  if (ratios.size() < 2) return 0;
+  std::printf("\nrecorded 3D / rod, per design:\n");
+  for (int k = 0; k < 2; ++k) {
+    double lo = 1e300, hi = 0;
+    std::printf("  %-14s", k == 0 ? "rod" : "confined rod");
+    for (const auto& r : ratios) {
+      std::printf(" %6.3f", r[k]);
+      lo = std::min(lo, r[k]);
+      hi = std::max(hi, r[k]);
+    }
+    std::printf("   max/min %.3f\n", hi / lo);
   }
 }

@@ -26,6 +26,7 @@ fem::ArmRodSpec rod_spec(const ArmCandidate& c, const EvaluationSettings& s) {
   spec.sheath = c.sheath;
   spec.rings = c.rings;
   spec.nodes_per_segment = s.rod_nodes_per_segment;
+  spec.ring_confinement = s.ring_confinement;
   return spec;
 }
 

@@ -46,6 +46,7 @@ struct EvaluationSettings {
   int rra_mesh_level = 1;               // axisymmetric FEM of each segment's RRA
   int pressure_steps = 12;              // rod continuation steps to the working pressure
   int rod_nodes_per_segment = 17;
+  bool ring_confinement = false;        // the rod's 3CA sections: rings hold the tube wall (fem/reduced/confined_wall.hpp)
   double gravity_m_s2 = 9.80665;
 };
 

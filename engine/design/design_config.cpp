@@ -56,6 +56,10 @@ objectives::EvaluationSettings read_model(fem::JsonReader& m, const objectives::
                                what + ": rod continuation steps to the working pressure");
   s.rod_nodes_per_segment = m.integer("rod_nodes_per_segment", defaults.rod_nodes_per_segment, Range::closed(5, 400),
                                       what + ": rod nodes per 3CA segment");
+  s.ring_confinement = m.boolean("ring_confinement", defaults.ring_confinement,
+                                 what + ": the rod's 3CA sections let the rings hold the tube wall (confined wall "
+                                        "law, chamber force on the rings' inner area; README \"Where the rod's error "
+                                        "comes from\")");
   m.finish();
   return s;
 }
@@ -206,6 +210,7 @@ DesignConfig read_design_config(const nlohmann::json& document) {
     fine.rra_mesh_level = c.model.rra_mesh_level;  // the local peaks' definition (README); level + 1 is reported as a sensitivity
     fine.pressure_steps = 24;
     fine.rod_nodes_per_segment = 49;
+    fine.ring_confinement = c.model.ring_confinement;  // the same rod, finer
     auto k = root.object("check", "fidelity of the final design's re-check");
     c.solid_check_segment = k.integer("solid_segment", 0, Range::closed(0, 3),
                                       "bend this segment (1 proximal … 3 distal) of the optimum by the 3D FEM "

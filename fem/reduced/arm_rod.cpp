@@ -19,9 +19,10 @@ ArmRod::ArmRod(ArmRodSpec spec)
   for (const RodLayout::Node& node : layout_.nodes) {
     const RodPiece& piece = spec_.pieces[node.piece];
     sections_.push_back(node.rigid                          ? RodSection{}
-                        : piece.kind == RodPiece::Kind::tca ? tca_section(piece.design, node.z, spec_.bend_direction_rad)
+                        : piece.kind == RodPiece::Kind::tca ? tca_section(piece.design, node.z, spec_.bend_direction_rad, 48, 6,
+                                                                          spec_.ring_confinement ? spec_.tube.law.get() : nullptr)
                                                             : rra_section(piece.design.actuator, node.z));
-    tube_area.push_back(sections_.back().tube_area);
+    tube_area.push_back(sections_.back().tube_area + sections_.back().confined_area);
     sheath_area.push_back(sections_.back().sheath_area);
   }
   distribute_masses(layout_, spec_, tube_area, sheath_area);

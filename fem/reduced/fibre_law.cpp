@@ -8,15 +8,18 @@
 namespace softarm::fem {
 
 FibreLaw::FibreLaw(const HyperelasticLaw& law, double lambda_min, double lambda_max, int points)
+    : FibreLaw([&law](double l) { return nominal_stress(law, LoadingMode::uniaxial, l); }, lambda_min, lambda_max,
+               points) {}
+
+FibreLaw::FibreLaw(const std::function<double(double)>& stress, double lambda_min, double lambda_max, int points)
     : lo_(lambda_min), hi_(lambda_max), step_((lambda_max - lambda_min) / (points - 1)) {
   p_.resize(points);
   dp_.resize(points);
   const double h = 1e-5;
   for (int i = 0; i < points; ++i) {
     const double l = lo_ + i * step_;
-    p_[i] = nominal_stress(law, LoadingMode::uniaxial, l);
-    dp_[i] = (nominal_stress(law, LoadingMode::uniaxial, l + h) - nominal_stress(law, LoadingMode::uniaxial, l - h)) /
-             (2 * h);
+    p_[i] = stress(l);
+    dp_[i] = (stress(l + h) - stress(l - h)) / (2 * h);
   }
 }
 

@@ -10,6 +10,7 @@
 // polynomials (C1, consistent value and slope). A law that softens (dP/dλ ≤ 0, the Drucker limit
 // in uniaxial tension, e.g. Dragon Skin 10) makes the rod's section tangent
 // singular there: the rod reports a limit point instead of running on.
+#include <functional>
 #include <vector>
 
 #include "fem/materials/hyperelastic_law.hpp"
@@ -20,6 +21,8 @@ class FibreLaw {
  public:
   /// Tabulates P on [lambda_min, lambda_max] with `points` samples.
   explicit FibreLaw(const HyperelasticLaw& law, double lambda_min = 0.3, double lambda_max = 6.0, int points = 6001);
+  /// Tabulates any nominal stress P(λ) (MPa) the same way (tangent by central differences of P).
+  FibreLaw(const std::function<double(double)>& nominal_stress, double lambda_min, double lambda_max, int points);
   /// Nominal stress P(λ), MPa (cubic Hermite on the table; linear extrapolation outside it).
   double stress(double lambda) const;
   /// dP/dλ, MPa: the exact derivative of stress().

@@ -34,6 +34,7 @@ struct ArmRodSpec {
   Material tube, rings, sheath;
   int nodes_per_segment = 33;
   double bend_direction_rad = 0;  // planar rod: in each 3CA's section, 0 = towards chamber 1
+  bool ring_confinement = false;  // 3CA sections: the rings hold the tube wall (confined_wall.hpp)
 };
 
 struct RodPartMasses {

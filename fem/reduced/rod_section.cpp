@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fem/reduced/confined_wall.hpp"
 #include "fem/reduced/section_geometry.hpp"
 
 namespace softarm::fem {
@@ -20,10 +21,19 @@ double chamber_force_radius(const RraDesign& d, double z) {
   return d.chamber_radius(zc);
 }
 
-RodSection tca_section(const TcaDesign& design, double z, double bend_direction_rad, int strips, int subrows) {
+double confinement_radius(const RraDesign& d, double z) {
+  if (d.ring_count == 0 || in_end_cap(d, z)) return 0.0;
+  const double depth = d.square_rings() ? 0.5 * d.ring_square_side_mm() : d.ring_section_radius();
+  return d.outer_radius(z) - depth;
+}
+
+RodSection tca_section(const TcaDesign& design, double z, double bend_direction_rad, int strips, int subrows,
+                       const HyperelasticLaw* confined_tube_law) {
   const RraDesign& a = design.actuator;
-  const double r_o = a.outer_radius(z), r_f = chamber_force_radius(a, z);
+  const double r_o = a.outer_radius(z);
   const double r_c = in_end_cap(a, z) ? 0.0 : a.chamber_radius(z);
+  const double r_i = confined_tube_law ? confinement_radius(a, z) : 0.0;
+  const double r_f = r_i > 0 ? r_i : chamber_force_radius(a, z);
   const double rho = r_o + design.sheath_thickness_mm;
   const double r_hole = design.centre_hole_diameter_mm / 2;
   // Section frame: y along the bending direction, x across it.
@@ -50,14 +60,18 @@ RodSection tca_section(const TcaDesign& design, double z, double bend_direction_
         envelope += g[1] * dr * envelope_chord(axes, rho, a + (r + 0.5 + 0.5 * g[0]) * dr).length();
     for (const auto& c : axes) {
       const double disc = disc_strip_area(c[1], r_o, a, b);
-      f.tube_area += disc - disc_strip_area(c[1], r_c, a, b);
+      const double held = r_i > 0 ? disc_strip_area(c[1], r_i, a, b) - disc_strip_area(c[1], r_c, a, b) : 0.0;
+      f.tube_area += disc - disc_strip_area(c[1], r_c, a, b) - held;
+      f.confined_area += held;
       outer += disc;
     }
     f.sheath_area = std::max(0.0, envelope - outer);
     s.tube_area += f.tube_area;
     s.sheath_area += f.sheath_area;
+    s.confined_area += f.confined_area;
     s.strips.push_back(f);
   }
+  if (r_i > 0) s.confined_law = std::make_shared<const FibreLaw>(confined_wall_law(*confined_tube_law, r_c, r_i));
   return s;
 }
 

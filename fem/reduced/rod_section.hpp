@@ -20,10 +20,16 @@
 //   calibrated against the axisymmetric FEM (rra_calibration.hpp);
 // - the end caps are solid tube material (the chamber's force area is taken at
 //   the cap's inner face).
+// Optionally (ArmRodSpec::ring_confinement) the rings hold the tube wall inside
+// the grooves' bottom radius R_i (confined_wall.hpp): that wall gets the
+// confined law and the chamber's force area becomes π R_i² on the ringed
+// length (the end caps keep π r_c²).
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "fem/mesh/tca_design.hpp"
+#include "fem/reduced/fibre_law.hpp"
 
 namespace softarm::fem {
 
@@ -34,6 +40,7 @@ struct FibreStrip {
   double y = 0;          // strip centre along the bending direction, mm
   double tube_area = 0;  // mm² of tube material in the strip
   double sheath_area = 0;
+  double confined_area = 0;  // mm² of tube wall held by the rings (confined_wall.hpp)
 };
 
 struct RodSection {
@@ -42,13 +49,16 @@ struct RodSection {
   /// area its pressure acts on (mm²).
   std::vector<double> chamber_y, chamber_force_area;
   double tube_area = 0, sheath_area = 0;  // mm², sums over the strips
+  double confined_area = 0;
+  std::shared_ptr<const FibreLaw> confined_law;  // the confined wall's law at this height (null: none)
 };
 
 /// The 3CA section at height z (0 = bottom, l = top), bending towards the unit
 /// direction at angle `bend_direction_rad` in the section plane (chamber 1's
 /// axis at angle 0, chamber k at (k − 1)·120°). `strips` strips across the
 /// envelope, `subrows` midpoint rows per strip.
-RodSection tca_section(const TcaDesign& design, double z, double bend_direction_rad, int strips = 48, int subrows = 6);
+RodSection tca_section(const TcaDesign& design, double z, double bend_direction_rad, int strips = 48, int subrows = 6,
+                       const HyperelasticLaw* tube_law = nullptr);
 
 /// The lone RRA's section at height z (axisymmetric: the bending direction is irrelevant).
 RodSection rra_section(const RraDesign& design, double z, int strips = 32);
@@ -56,6 +66,9 @@ RodSection rra_section(const RraDesign& design, double z, int strips = 32);
 /// Chamber radius for the pressure force at height z: r_c(z) inside the
 /// chamber, r_c at the nearer cap face inside a cap.
 double chamber_force_radius(const RraDesign& design, double z);
+/// Radius the rings hold at height z (the grooves' bottom, r_o − d_r/2; square rings: half
+/// their side); 0 in an end cap or without rings.
+double confinement_radius(const RraDesign& design, double z);
 /// True where z lies inside an end cap (solid tube material).
 bool in_end_cap(const RraDesign& design, double z);
 

@@ -31,6 +31,12 @@ Residual residual(const RodSection& s, const SectionLaws& laws, double f_sum, do
         dp += f.sheath_area * dps;
       }
     }
+    if (f.confined_area > 0) {
+      double pc, dpc;
+      s.confined_law->evaluate(l, pc, dpc);
+      p += f.confined_area * pc;
+      dp += f.confined_area * dpc;
+    }
     n += p;
     m += f.y * p;
     a += dp;
@@ -62,6 +68,7 @@ SectionState solve_section(const RodSection& s, const SectionLaws& laws, const s
   for (const auto& f : s.strips) {
     y_max = std::max(y_max, std::abs(f.y));
     ea += f.tube_area * laws.tube->initial_modulus() + (laws.sheath ? f.sheath_area * laws.sheath->initial_modulus() : 0.0);
+    if (f.confined_area > 0) ea += f.confined_area * s.confined_law->initial_modulus();
   }
   const double scale = std::abs(ea);
   SectionState st = guess;
@@ -89,6 +96,14 @@ SectionState solve_section(const RodSection& s, const SectionLaws& laws, const s
       st.ok = false;
       return st;
     }
+    if (s.confined_law)
+      for (const auto& f : s.strips)
+        if (f.confined_area > 0 && st.stretch - st.curvature * f.y < s.confined_law->lambda_min()) {
+          st.ok = false;
+          st.failure = "a ring-held wall compressed below stretch " + std::to_string(s.confined_law->lambda_min()) +
+                       " (its chamber closes)";
+          return st;
+        }
   }
   st.ok = false;
   st.failure = "section equilibrium did not converge in 50 Newton iterations";
@@ -110,7 +125,7 @@ void FibreExtremes::include(double l, bool tube, bool sheath) {
 
 FibreExtremes fibre_extremes(const RodSection& s, const SectionState& st) {
   FibreExtremes e;
-  for (const auto& f : s.strips) e.include(st.stretch - st.curvature * f.y, f.tube_area > 0, f.sheath_area > 0);
+  for (const auto& f : s.strips) e.include(st.stretch - st.curvature * f.y, f.tube_area + f.confined_area > 0, f.sheath_area > 0);
   return e;
 }
 

@@ -8,6 +8,9 @@
 // (counter-clockwise > 0, the sense in which κ > 0 turns the axis):
 //     R1 = ∫ P dA − Σ f_k − N = 0          (axial force)
 //     R2 = ∫ y P dA − Σ f_k y_k + M = 0     (moment; a fibre at +y lies on the inside of a κ > 0 bend)
+// (with ring confinement, rod_section.hpp, the held wall's P is its confined
+// law's and f_k acts on the rings' inner area: R is then the gradient of the
+// section's energy minus the pressure's work p·V, confined_wall.hpp)
 // solved by Newton with the exact 2×2 tangent. A tangent that is not positive
 // definite (a fibre law past its uniaxial Drucker limit) is a limit point of
 // the section and is reported, not stepped over.
