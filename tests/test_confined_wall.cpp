@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "fem/materials/material.hpp"
+#include "fem/reduced/arm_rod.hpp"
 #include "fem/reduced/confined_wall.hpp"
 #include "fem/reduced/rod_section.hpp"
 
@@ -76,4 +77,25 @@ TEST_CASE("confinement keeps the tube's area and moves the force area to the rin
   CHECK(in_cap.confined_area == 0.0);
   CHECK_FALSE(in_cap.confined_law);
   for (double area : in_cap.chamber_force_area) CHECK(area == Approx(kPi * std::pow(chamber_force_radius(a, cap), 2)));
+}
+
+TEST_CASE("only rigid rings confine: rings of the tube's silicone leave the rod free", "[reduced][confined]") {
+  const auto bending_deg = [](const std::string& rings, bool confined) {
+    ArmRodSpec spec;
+    RodPiece piece;
+    piece.kind = RodPiece::Kind::tca;
+    spec.pieces = {piece};
+    spec.tube = spec.sheath = builtin_material("dragon_skin_30", "tube");
+    spec.rings = builtin_material(rings, "rings");
+    spec.nodes_per_segment = 9;
+    spec.ring_confinement = confined;
+    const ArmRod rod(spec);
+    RodLoad load;
+    load.chamber_pressure_kPa = {{0.0, 50.0, 50.0}};
+    load.clamp_angle_rad = -kPi / 2;
+    return rod.tip_rotation(rod.follow(load, 4), load) * 180 / kPi;
+  };
+  CHECK(bending_deg("dragon_skin_30", true) == Approx(bending_deg("dragon_skin_30", false)).epsilon(1e-12));
+  // ABS rings: the pressure acts on π R_i² instead of π r_c² (2.7x at the thesis RRA's bottom), against a stiffer wall.
+  CHECK(bending_deg("digital_abs", true) > 1.5 * bending_deg("digital_abs", false));
 }

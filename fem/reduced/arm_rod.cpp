@@ -20,12 +20,19 @@ ArmRod::ArmRod(ArmRodSpec spec)
     const RodPiece& piece = spec_.pieces[node.piece];
     sections_.push_back(node.rigid                          ? RodSection{}
                         : piece.kind == RodPiece::Kind::tca ? tca_section(piece.design, node.z, spec_.bend_direction_rad, 48, 6,
-                                                                          spec_.ring_confinement ? spec_.tube.law.get() : nullptr)
+                                                                          rings_confine() ? spec_.tube.law.get() : nullptr)
                                                             : rra_section(piece.design.actuator, node.z));
     tube_area.push_back(sections_.back().tube_area + sections_.back().confined_area);
     sheath_area.push_back(sections_.back().sheath_area);
   }
   distribute_masses(layout_, spec_, tube_area, sheath_area);
+}
+
+// Confinement needs rings that are rigid next to the tube: ABS is ~10^4 times as stiff as the
+// silicones; rings of a silicone (a plain tube in effect) hold nothing.
+bool ArmRod::rings_confine() const {
+  return spec_.ring_confinement &&
+         spec_.rings.law->initial_shear_modulus() > 100 * spec_.tube.law->initial_shear_modulus();
 }
 
 double ArmRod::mass_kg() const {

@@ -73,6 +73,7 @@ class ArmRod {
   ArmRodSpec spec_;
   FibreLaw tube_law_, sheath_law_;
   bool same_law_ = false;  // tube and sheath of one material: one table lookup per fibre
+  bool rings_confine() const;  // ring_confinement asked and the rings are rigid (100x the tube's shear modulus)
   SectionLaws laws() const { return {&tube_law_, same_law_ ? &tube_law_ : &sheath_law_}; }
   RodLayout layout_;
   std::vector<RodSection> sections_;  // per node (empty at a connector)

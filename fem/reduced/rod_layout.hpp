@@ -34,7 +34,8 @@ struct ArmRodSpec {
   Material tube, rings, sheath;
   int nodes_per_segment = 33;
   double bend_direction_rad = 0;  // planar rod: in each 3CA's section, 0 = towards chamber 1
-  bool ring_confinement = false;  // 3CA sections: the rings hold the tube wall (confined_wall.hpp)
+  bool ring_confinement = false;  // 3CA sections: rigid rings hold the tube wall (confined_wall.hpp; rings of
+                                  // less than 100x the tube's shear modulus hold nothing)
 };
 
 struct RodPartMasses {
