@@ -50,7 +50,6 @@ double solid(const Rings& r, const Load& l, double& seconds) {
   spec.chamber_pressure_kPa = {0.0, p, p};
   spec.gravity_m_s2 = Eigen::Vector3d(-l.gravity_x, 0.0, -l.gravity_axial);
   spec.output_pressures_kPa = {p};
-  spec.steps.initial_increment = 0.1;
   const auto t0 = std::chrono::steady_clock::now();
   const TcaResult res = run_tca_scene(spec);
   seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -15,11 +15,16 @@
 // give the ratio 3D/rod per design: check and correct's zeroth-order factor
 // carries from one design to the next only as far as that ratio is constant.
 //
-//   build/benchmarks/bench_rod_error [--with-3d] [--design N]
+//   build/benchmarks/bench_rod_error [--with-3d] [--design N] [--stiffness]
 //
 // --design N (1-5) runs only the N-th design; with --with-3d it also prints the
 // 3D path's bending at every output beside the rod's at the same pressure, so
 // the error can be followed along the curve, not only at its end.
+//
+// --stiffness measures what the confined rod still misses (README): each
+// design's distal segment under ten times its weight along its axis, by the 3D
+// model (about a minute each) and by both rods; k = rod/3D stretch; then the
+// confined rod with every fibre stiffened by its k, at the recorded 3D pressure.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -33,11 +38,14 @@
 #include "fem/core/json_reader.hpp"
 #include "fem/reduced/arm_rod.hpp"
 #include "fem/reduced/rra_calibration.hpp"
+#include "fem/scenes/tca_scene.hpp"
 #include "objectives/solid_segment_check.hpp"
 
 using namespace softarm;
 
 namespace {
+constexpr double kG = 9.80665;
+
 struct Design {
   const char* name;
   std::vector<double> x;  // the design variables in design_variable_names() order; materials: 0 DS30, 1 DS20
@@ -45,9 +53,8 @@ struct Design {
   double recorded_3d_deg; // the 3D bending there (bench_rod_error --with-3d, Hex20 2x2x2 level 1)
 };
 
-// The distal segment's rod bending at p (gravity against the bend, as the design's bending scene), deg.
-double rod_bending_deg(const objectives::ArmCandidate& c, double p_kPa, const fem::ForceFactor* factor,
-                       bool confined = false) {
+// The distal segment's rod, free or with ring-confined walls.
+fem::ArmRod distal_rod(const objectives::ArmCandidate& c, const fem::ForceFactor* factor, bool confined) {
   fem::ArmRodSpec spec;
   spec.ring_confinement = confined;
   spec.tube = c.tube, spec.sheath = c.sheath, spec.rings = c.rings;
@@ -57,12 +64,43 @@ double rod_bending_deg(const objectives::ArmCandidate& c, double p_kPa, const fe
   piece.design = c.design.segments[2];
   if (factor) piece.force_factor = *factor;
   spec.pieces = {piece};
-  const fem::ArmRod rod(spec);
+  return fem::ArmRod(spec);
+}
+
+// The distal segment's rod bending at p (gravity against the bend, as the design's bending scene), deg.
+// `stiffening` k > 1 scales every fibre's stress by k: the same as loads divided by k.
+double rod_bending_deg(const objectives::ArmCandidate& c, double p_kPa, const fem::ForceFactor* factor,
+                       bool confined = false, double stiffening = 1) {
+  const fem::ArmRod rod = distal_rod(c, factor, confined);
   fem::RodLoad load;
-  load.chamber_pressure_kPa = {{0.0, p_kPa, p_kPa}};
-  load.gravity_m_s2 = {-9.80665, 0.0};
+  load.chamber_pressure_kPa = {{0.0, p_kPa / stiffening, p_kPa / stiffening}};
+  load.gravity_m_s2 = {-kG / stiffening, 0.0};
   const fem::RodState st = rod.follow(load, 12);
   return rod.tip_rotation(st, load) * 180 / 3.14159265358979323846;
+}
+
+// --stiffness: the distal segment hanging under ten times its weight along its axis, unpressurised:
+// the tip's axial displacement (mm) by the rod and by the 3D model (as check_segment_in_3d's mesh).
+double rod_axial_stretch_mm(const objectives::ArmCandidate& c, bool confined) {
+  const fem::ArmRod rod = distal_rod(c, nullptr, confined);
+  fem::RodLoad load;
+  load.chamber_pressure_kPa = {{0.0, 0.0, 0.0}};
+  load.gravity_m_s2 = {0.0, -10 * kG};
+  return -(rod.solve(load, nullptr).z.back() + rod.length_mm());
+}
+
+double solid_axial_stretch_mm(const objectives::ArmCandidate& c) {
+  fem::TcaSceneSpec spec;
+  spec.design = c.design.segments[2];
+  spec.tube_material = c.tube, spec.ring_material = c.rings, spec.sheath_material = c.sheath;
+  spec.mesh_level = 1;
+  spec.element_order = 2;
+  spec.serendipity = true;
+  spec.integration = fem::ElementIntegration::reduced;
+  spec.chamber_pressure_kPa = {0.0, 1e-3, 1e-3};  // a path needs a pressure to ramp: 1 Pa is nothing here
+  spec.gravity_m_s2 = Eigen::Vector3d(0.0, 0.0, -10 * kG);
+  spec.output_pressures_kPa = {1e-3};
+  return -fem::run_tca_scene(spec).states.back().tip_displacement_mm.z();
 }
 
 // The lone RRA of the distal segment in the axisymmetric FEM up to p: its force factor c(p).
@@ -79,11 +117,12 @@ fem::RraCalibration lone_rra(const objectives::ArmCandidate& c, double p_kPa) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool with_3d = false;
+  bool with_3d = false, stiffness = false;
   std::size_t only = 0;  // 1-based; 0: every design
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--with-3d") == 0) with_3d = true;
     else if (std::strcmp(argv[i], "--design") == 0 && i + 1 < argc) only = std::stoul(argv[++i]);
+    else if (std::strcmp(argv[i], "--stiffness") == 0) stiffness = true;
   }
   const engine::DesignConfig config = engine::read_design_config(
       fem::load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/thesis_requirements.json"));
@@ -95,6 +134,31 @@ int main(int argc, char** argv) {
       {"round 0, 1.364 kg (DS30/DS20)", {0.350108, 0.180914, 35, 0.343385, 4.37683, 0.523542, 0, 1}, 254.5, 75.8},
       {"round 1, 0.971 kg (DS20/DS20)", {0.336163, 0.167693, 21, 0.263945, 3.92867, 0.695315, 1, 1}, 344.7, 78.4},
       {"1.458 kg, other machine (DS30/DS20)", {0.341, 0.246, 34, 0.363, 3.71, 0.485, 0, 1}, 305.8, 84.4}};
+  if (stiffness) {
+    std::printf("%-38s %11s %11s %11s %8s %8s %18s %10s\n", "design (distal segment), 10 g axial", "3D (mm)",
+                "rod (mm)", "confined", "k rod", "k conf", "stiffened confined", "3D (deg)");
+    for (std::size_t n = 0; n < designs.size(); ++n) {
+      if (only != 0 && n + 1 != only) continue;
+      const Design& d = designs[n];
+      const objectives::ArmCandidate c = engine::make_candidate(config, d.x);
+      const double solid = solid_axial_stretch_mm(c), free = rod_axial_stretch_mm(c, false),
+                   held = rod_axial_stretch_mm(c, true);
+      const double bend = rod_bending_deg(c, d.pressure_kPa, nullptr, true, held / solid);
+      std::printf("%-38s %11.3f %11.3f %11.3f %8.3f %8.3f %9.2f (%+5.1f %%) %10.1f\n", d.name, solid, free, held,
+                  free / solid, held / solid, bend, 100 * (bend / d.recorded_3d_deg - 1), d.recorded_3d_deg);
+      // One design: the stiffened confined rod at the 3D check's outputs (24 steps to the working
+      // pressure), to set beside `--design N --with-3d`'s 3D curve.
+      if (only != 0)
+        for (int i = 1; i <= config.check.pressure_steps; ++i) {
+          const double p = config.check.working_pressure_kPa * i / config.check.pressure_steps;
+          if (p > d.pressure_kPa + 1e-9) break;
+          std::printf("  %7.1f kPa  stiffened confined rod %7.2f deg\n", p,
+                      rod_bending_deg(c, p, nullptr, true, held / solid));
+        }
+      std::fflush(stdout);
+    }
+    return 0;
+  }
   std::printf("%-38s %8s %10s %10s %10s %10s  lone RRA c(p) at p\n", "design (distal segment)", "p (kPa)",
               "rod (deg)", "rod c(p)", "confined", "3D (deg)");
   std::vector<std::array<double, 2>> ratios;  // 3D/rod, 3D/confined rod
