@@ -32,7 +32,10 @@ RodSection tca_section(const TcaDesign& design, double z, double bend_direction_
   const RraDesign& a = design.actuator;
   const double r_o = a.outer_radius(z);
   const double r_c = in_end_cap(a, z) ? 0.0 : a.chamber_radius(z);
-  const double r_i = confined_tube_law ? confinement_radius(a, z) : 0.0;
+  // A validated design's grooves stop short of the chamber (rra_design.cpp), so R_i > r_c; an
+  // unvalidated one whose groove reaches it is left free rather than given a negative area.
+  const double held_radius = confined_tube_law ? confinement_radius(a, z) : 0.0;
+  const double r_i = held_radius > r_c ? held_radius : 0.0;
   const double r_f = r_i > 0 ? r_i : chamber_force_radius(a, z);
   const double rho = r_o + design.sheath_thickness_mm;
   const double r_hole = design.centre_hole_diameter_mm / 2;
