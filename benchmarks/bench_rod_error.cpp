@@ -38,7 +38,6 @@
 #include "fem/core/json_reader.hpp"
 #include "fem/reduced/arm_rod.hpp"
 #include "fem/reduced/rra_calibration.hpp"
-#include "fem/scenes/tca_scene.hpp"
 #include "objectives/solid_segment_check.hpp"
 
 using namespace softarm;
@@ -90,13 +89,7 @@ double rod_axial_stretch_mm(const objectives::ArmCandidate& c, bool confined) {
 }
 
 double solid_axial_stretch_mm(const objectives::ArmCandidate& c) {
-  fem::TcaSceneSpec spec;
-  spec.design = c.design.segments[2];
-  spec.tube_material = c.tube, spec.ring_material = c.rings, spec.sheath_material = c.sheath;
-  spec.mesh_level = 1;
-  spec.element_order = 2;
-  spec.serendipity = true;
-  spec.integration = fem::ElementIntegration::reduced;
+  fem::TcaSceneSpec spec = objectives::solid_segment_scene(c, 3);
   spec.chamber_pressure_kPa = {0.0, 1e-3, 1e-3};  // a path needs a pressure to ramp: 1 Pa is nothing here
   spec.gravity_m_s2 = Eigen::Vector3d(0.0, 0.0, -10 * kG);
   spec.output_pressures_kPa = {1e-3};
@@ -171,7 +164,9 @@ int main(int argc, char** argv) {
     const double calibrated = rod_bending_deg(c, d.pressure_kPa, &cal.force_factor);
     const double confined = rod_bending_deg(c, d.pressure_kPa, nullptr, true);
     ratios.push_back({d.recorded_3d_deg / rod, d.recorded_3d_deg / confined});
-    std::string solid = std::to_string(d.recorded_3d_deg).substr(0, 4) + " (recorded)";
+    char recorded[32];
+    std::snprintf(recorded, sizeof recorded, "%.1f (recorded)", d.recorded_3d_deg);
+    std::string solid = recorded;
     if (with_3d) {
       const objectives::ArmMeasures m = objectives::evaluate_arm(c, config.check);
       const auto curve = [&](double p, double deg) {

@@ -69,10 +69,7 @@ SolidSegmentCheck solid_check_from_json(const nlohmann::json& j) {
   return c;
 }
 
-SolidSegmentCheck check_segment_in_3d(const ArmCandidate& c, const EvaluationSettings& s, int segment,
-                                      const SegmentMeasures& rod, int mesh_level,
-                                      const std::function<void(double, double)>& progress) {
-  const auto t0 = std::chrono::steady_clock::now();
+fem::TcaSceneSpec solid_segment_scene(const ArmCandidate& c, int segment, int mesh_level) {
   fem::TcaSceneSpec spec;
   spec.design = c.design.segments.at(static_cast<std::size_t>(segment - 1));
   spec.tube_material = c.tube;
@@ -82,6 +79,14 @@ SolidSegmentCheck check_segment_in_3d(const ArmCandidate& c, const EvaluationSet
   spec.element_order = 2;
   spec.serendipity = true;
   spec.integration = fem::ElementIntegration::reduced;
+  return spec;
+}
+
+SolidSegmentCheck check_segment_in_3d(const ArmCandidate& c, const EvaluationSettings& s, int segment,
+                                      const SegmentMeasures& rod, int mesh_level,
+                                      const std::function<void(double, double)>& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  fem::TcaSceneSpec spec = solid_segment_scene(c, segment, mesh_level);
   // The rod's load (arm_evaluation.cpp, bend_segment): chambers 2 and 3, gravity against the bend.
   const double p = s.working_pressure_kPa;
   spec.chamber_pressure_kPa = {0.0, p, p};

@@ -16,6 +16,7 @@
 #include <string>
 
 #include "fem/scenes/pressure_path.hpp"
+#include "fem/scenes/tca_scene.hpp"
 #include "objectives/arm_evaluation.hpp"
 
 namespace softarm::objectives {
@@ -50,6 +51,10 @@ SolidSegmentCheck solid_check_from_json(const nlohmann::json& j);
 /// A segment's bending by the search model at pressure p: linear between its path's steps,
 /// the last step's beyond them.
 double bending_at_pressure(const SegmentMeasures& rod, double p_kPa);
+
+/// The check's 3D model of segment `segment` (1–3) of `candidate`: its design and materials on
+/// Hex20/P1 at 2×2×2 points, mesh `mesh_level`, with no load yet.
+fem::TcaSceneSpec solid_segment_scene(const ArmCandidate& candidate, int segment, int mesh_level = 1);
 
 /// Bends segment `segment` (1–3) of `candidate` by the 3D FEM under the load of `settings`
 /// (working pressure, gravity, target bending, output steps) and compares it with `rod`, that
