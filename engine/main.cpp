@@ -1,3 +1,7 @@
 #include "engine/cli.hpp"
+#include "fem/core/allocator.hpp"
 
-int main(int argc, char** argv) { return softarm::engine::run_cli(argc, argv); }
+int main(int argc, char** argv) {
+  softarm::fem::keep_freed_memory_mapped();
+  return softarm::engine::run_cli(argc, argv);
+}
