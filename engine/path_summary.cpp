@@ -7,9 +7,13 @@ nlohmann::json path_solver_json(const fem::PressurePathResult& path) {
           {"newton_iterations", path.path.stats.newton_iterations},
           {"cutbacks", path.path.stats.cutbacks},
           {"factorizations", path.factorizations},
-          {"indefinite_tangents", path.lu_fallbacks},
+          {"indefinite_tangents_lu", path.lu_fallbacks},
+          {"shifted_cholesky_attempts", path.shifted_factorizations},
           {"steps_solved_on_earlier_factor", path.reused_solves},
-          {"cg_iterations", path.cg_iterations}};
+          {"cg_iterations", path.cg_iterations},
+          {"analyse_s", path.analyse_s},
+          {"factorize_s", path.factorize_s},
+          {"solve_s", path.solve_s}};
 }
 
 }  // namespace softarm::engine

@@ -147,13 +147,18 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
   out.path.stats.newton_iterations += preload_stats.newton_iterations;
   out.path.stats.cutbacks += preload_stats.cutbacks;
   out.path.stats.second_starts += preload_stats.second_starts;
-  out.analyse_s = solver.analyse_seconds;
-  out.factorize_s = solver.factorize_seconds;
-  out.solve_s = solver.solve_seconds;
-  out.factorizations = solver.factorizations;
-  out.lu_fallbacks = solver.lu_fallbacks;
-  out.reused_solves = solver.reused_solves;
-  out.cg_iterations = solver.cg_iterations;
+  // The solver's running totals: taken again after volume control, which uses it too.
+  auto take_solver_costs = [&] {
+    out.analyse_s = solver.analyse_seconds;
+    out.factorize_s = solver.factorize_seconds;
+    out.solve_s = solver.solve_seconds;
+    out.factorizations = solver.factorizations;
+    out.lu_fallbacks = solver.lu_fallbacks;
+    out.shifted_factorizations = solver.shifted_factorizations;
+    out.reused_solves = solver.reused_solves;
+    out.cg_iterations = solver.cg_iterations;
+  };
+  take_solver_costs();
   out.reached_pressure_kPa = out.history.back().pressure_kPa;
   if (out.path.completed) {
     out.outcome = PathOutcome::completed;
@@ -185,6 +190,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
       out.beyond_limit.push_back({vc.states[i].level * spec.max_pressure_kPa, vc.states[i].volume, 0.0,
                                   vc.states[i].tangent_positive_definite, vc.states[i].iterations, false});
     out.path.stats.newton_iterations += vc.newton_iterations;
+    take_solver_costs();
     // x is now the traced state of the largest pressure (at least the last one's): report that one.
     out.reached_pressure_kPa = level * spec.max_pressure_kPa;
     if (vc.passed_peak) {

@@ -67,6 +67,7 @@ struct PressurePathResult {
   // Linear-algebra cost of the whole path (for benchmarks).
   double analyse_s = 0.0, factorize_s = 0.0, solve_s = 0.0;
   int factorizations = 0, lu_fallbacks = 0;  // LU: the tangent was indefinite
+  int shifted_factorizations = 0;             // Cholesky attempts on K + σI after K itself failed
   int reused_solves = 0, cg_iterations = 0;  // Newton steps solved by CG on an earlier factor
 };
 

@@ -124,6 +124,8 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
 }
 
 void print_convergence_table(std::ostream& out, const NewtonReport& r) {
+  const std::ios_base::fmtflags flags = out.flags();  // the table's number formats stay in the table
+  const std::streamsize precision = out.precision();
   out << "    it   |r|/|r0|     |dx|/|u|    |dx.r|/|.|0   step  tangent     solve\n";
   for (const auto& row : r.rows)
     out << "    " << std::setw(2) << row.iteration << std::scientific << std::setprecision(3) << "  " << row.residual
@@ -132,6 +134,8 @@ void print_convergence_table(std::ostream& out, const NewtonReport& r) {
         << (row.cg_iterations > 0 ? "CG " + std::to_string(row.cg_iterations) + " (old factor)" : "factorised") << "\n";
   out << "    " << (r.converged ? "converged" : std::string("failed: ") + to_string(r.failure) + " (" + r.message + ")")
       << "\n";
+  out.flags(flags);
+  out.precision(precision);
 }
 
 }  // namespace softarm::fem
