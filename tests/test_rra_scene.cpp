@@ -210,4 +210,11 @@ TEST_CASE("Newton gives up early on an unstable branch and stops at the same lim
   CHECK(patient.path.path.stats.second_starts >= 1);
   REQUIRE(guarded.path.path.stats.cutbacks >= 1);
   CHECK(guarded.path.path.stats.second_starts == 0);
+  // Below a level with only indefinite tangents the steps halve their distance to it: no
+  // level is tried twice, each failure is below the last, and the stop is at the same limit.
+  const auto& failed = guarded.path.path.stats.failed_levels;
+  INFO("halved steps " << guarded.path.path.stats.halved_steps << ", failed levels " << failed.size());
+  CHECK(guarded.path.path.stats.halved_steps >= 1);
+  REQUIRE(failed.size() >= 2);
+  for (std::size_t k = 1; k < failed.size(); ++k) CHECK(failed[k] < failed[k - 1]);
 }

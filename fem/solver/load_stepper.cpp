@@ -2,9 +2,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <iostream>
+#include <limits>
 
 namespace softarm::fem {
+
+/// The level of the next step towards `target`: one full increment, except that
+/// the step never leaves a sliver before the output level. Within 1.3 increments it
+/// lands (a 30 % longer step converges as well as the secant predictor allows),
+/// within two it goes half way: on the thesis 3CA the plain rule took a 0.09 step and
+/// then a 0.01 one to every output level, each costing a whole Newton solve.
+double next_step_level(double level, double increment, double target) {
+  const double remaining = target - level;
+  if (remaining <= 1.3 * increment) return target;
+  if (remaining < 2.0 * increment) return level + 0.5 * remaining;
+  return level + increment;
+}
 
 PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolver& solver,
                             const std::vector<double>& output_levels, const PathCallbacks& callbacks,
@@ -16,6 +30,9 @@ PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolve
   double increment = settings.initial_increment;
   std::size_t next_output = 0;
   constexpr double kLandingTolerance = 1e-12;
+  constexpr double kNoCeiling = std::numeric_limits<double>::infinity();
+  double ceiling = kNoCeiling;  // lowest level of an unstable-branch failure not yet passed
+  int halvings = 0;             // steps cut to half the distance to the ceiling since it was set
 
   // One step to next_level: with the secant predictor first, then (if that
   // fails and a predictor was used) from the last converged state.
@@ -29,7 +46,8 @@ PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolve
       NewtonReport report = solve_newton(problem, trial, solver, newton);
       result.stats.newton_iterations += report.iterations;
       if (settings.verbose) {
-        std::cout << "  step to level " << next_level << (predict ? "" : " (no predictor)") << "\n";
+        std::cout << "  step to level " << std::defaultfloat << std::setprecision(6) << next_level
+                  << (predict ? "" : " (no predictor)") << "\n";
         print_convergence_table(std::cout, report);
       }
       if (!report.converged) {
@@ -60,12 +78,25 @@ PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolve
 
   while (next_output < output_levels.size()) {
     const double target = output_levels[next_output];
-    const double trial_level = std::min(level + increment, target);
-    const bool lands = target - trial_level <= kLandingTolerance;
-    const double next_level = lands ? target : trial_level;
+    double next_level = next_step_level(level, increment, target);
+    // Below a level where Newton met only indefinite tangents, halve the distance to it
+    // instead of trying it again: near a limit point every failed try costs a run of
+    // shifted factorisations, a converged half step a few cheap iterations (thesis 3CA:
+    // 2 of its 4 failed tries at 310 kPa were repeats). A failure far from a limit point
+    // (a bad predictor) is passed once the distance is small or halved kMaxHalvings times.
+    constexpr int kMaxHalvings = 6;
+    if (ceiling - level < 2 * settings.min_increment || halvings >= kMaxHalvings) ceiling = kNoCeiling;
+    if (level + 0.5 * (ceiling - level) < next_level) {
+      next_level = level + 0.5 * (ceiling - level);
+      ++halvings;
+      ++result.stats.halved_steps;
+    }
+    const bool lands = target - next_level <= kLandingTolerance;
 
     callbacks.apply_load(next_level);
     if (try_step(next_level, lands)) continue;
+    result.stats.failed_levels.push_back(next_level);
+    if (result.failure == Failure::unstable_branch && next_level < ceiling) ceiling = next_level, halvings = 0;
     // Every attempt failed: cut back from the last converged state.
     ++result.stats.cutbacks;
     increment = (next_level - level) * settings.cutback;

@@ -5,7 +5,8 @@
 // failure restores the last converged state and cuts the step back. The
 // predictor extrapolates the last two converged states (secant); if Newton fails
 // from the predicted state the step is retried from the last state, except after
-// an unstable branch (only indefinite tangents: no equilibrium near that load).
+// an unstable branch (only indefinite tangents: no equilibrium near that load),
+// after which the steps halve their distance to that level instead of trying it again.
 // A path that cannot be continued returns what it reached and why.
 #include <functional>
 #include <string>
@@ -32,6 +33,8 @@ struct StepSettings {
 struct PathStatistics {
   int steps = 0, newton_iterations = 0, cutbacks = 0;
   int second_starts = 0;  // steps retried from the last converged state after the predicted start failed
+  int halved_steps = 0;   // steps cut to half the distance to a level where Newton met only indefinite tangents
+  std::vector<double> failed_levels;  // levels where every start failed, in the order tried
 };
 
 struct PathResult {
@@ -48,6 +51,10 @@ struct PathCallbacks {
   /// Called after each converged step; `is_output` marks requested levels.
   std::function<void(double level, const Vector& x, bool is_output, const NewtonReport& report)> on_converged;
 };
+
+/// The level of the next step from `level` towards the output level `target` with
+/// the step controller's current increment (lands exactly on `target`, leaves no sliver).
+double next_step_level(double level, double increment, double target);
 
 /// Follows the path from the converged state x at level 0 through the sorted output levels (the last is the end).
 PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolver& solver,
