@@ -51,8 +51,9 @@ class LinearSolver {
   /// Cholesky succeeded, indefinite when LU was needed and succeeded, singular otherwise.
   Status factorize(const SparseMatrix& K);
   /// As factorize, but an indefinite K is replaced by K + σI, σ = s·d̄ for
-  /// s = 1e-6, 1e-5, …, 100 with d̄ the mean |diagonal| of K, the first that
-  /// Cholesky accepts (σ is kept in last_shift); singular if none does.
+  /// s = s₀, 10 s₀, …, 100 with d̄ the mean |diagonal| of K, the first that
+  /// Cholesky accepts (σ is kept in last_shift); singular if none does. s₀ is
+  /// a tenth of the s that worked last time (1e-6 the first time).
   Status factorize_shifted(const SparseMatrix& K);
   /// Solves with the last factor; NaN everywhere when the matrix was singular (no factor).
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
@@ -100,6 +101,8 @@ class LinearSolver {
   bool cholesky_analysed_ = false, lu_analysed_ = false;
   Status status_ = Status::singular;
   bool shifted_ = false;  // the Cholesky factor is of K + σI
+  static constexpr double kMinShift = 1e-6, kMaxShift = 1e2;  // σ / mean |diagonal|
+  double last_shift_fraction_ = kMinShift * 10;  // s of the last accepted shift
   // Durations of the last Cholesky factorisation and of the last solve with it, for
   // solve_reusing_factor's budget.
   double last_cholesky_seconds_ = 0.0, last_solve_seconds_ = 0.0;
