@@ -22,9 +22,9 @@ void print_fidelity_ladders() {
                 << std::setw(7) << m.seconds << " s  error " << std::setw(5) << m.error_percent << " %  ("
                 << m.error_measure << ")\n";
   }
-  std::cout << "fidelity: fast = within " << fem::fidelity_target_percent("fast") << " %, balanced = "
-            << fem::fidelity_target_percent("balanced") << " %, accurate = " << fem::fidelity_target_percent("accurate")
-            << " %: the cheapest model that meets it\n";
+  std::cout << "fidelity: fast = the cheapest model, whatever its error; balanced = within "
+            << fem::fidelity_target_percent("balanced") << " %, accurate = within "
+            << fem::fidelity_target_percent("accurate") << " %: the cheapest model that meets it\n";
 }
 
 void write_fidelity_report(const std::string& file) {

@@ -75,6 +75,23 @@ TEST_CASE("a scene's fidelity request picks the cheapest level that meets it", "
   tca["model"]["fidelity"] = "fast";
   tca["model"].erase("target_error_percent");
   CHECK(read_scene_config(tca).reduced);
+
+  // "fast" is the cheapest model whatever its error, and says so: the SPL's spatial rod is 40 % off
+  // its 3D pose, and the next rung is a 2-hour 3D run.
+  json spl = thesis_scene("spl_thesis_pose.json");
+  spl.erase("mesh");
+  spl["model"] = {{"fidelity", "fast"}};
+  c = read_scene_config(spl);
+  CHECK(c.reduced);
+  INFO(c.selection->reason);
+  CHECK(c.selection->reason.find("whatever its error") != std::string::npos);
+  CHECK(c.selection->reason.find("40 %") != std::string::npos);
+  spl["model"] = {{"fidelity", "balanced"}};
+  c = read_scene_config(spl);
+  CHECK_FALSE(c.reduced);  // the 3D pose the errors are measured against
+  CHECK(c.spl.mesh_level == 1);
+  CHECK(c.spl.serendipity);
+  CHECK(c.spl.integration == ElementIntegration::reduced);
 }
 
 TEST_CASE("a fidelity request beside a hand-set mesh, or two requests, is refused with the field named", "[fidelity]") {

@@ -112,8 +112,9 @@ ModelRequest read_model(JsonReader& root, bool three_dimensional) {
                                     "auto: solve a half model when pressures and gravity are mirror-symmetric") == "auto";
   const std::string fidelity =
       model.choice("fidelity", "", {"", "fast", "balanced", "accurate"},
-                   "pick the model by the fidelity ladder (softarm fidelity): fast (within 25 %), balanced (2 %), "
-                   "accurate (0.5 %); the cheapest measured level that meets it; empty: mesh.level as given");
+                   "pick the model by the fidelity ladder (softarm fidelity): fast (the cheapest model, its measured error "
+                   "printed), balanced (within 2 %), accurate (within 0.5 %: the cheapest measured level that meets "
+                   "it); empty: mesh.level as given");
   const auto target = model.optional_number("target_error_percent", Range::open(0, 100),
                                             "pick the cheapest model whose measured error is within this (%)");
   if (!fidelity.empty() && target)
