@@ -104,6 +104,17 @@ TEST_CASE("load stepper lands exactly on the requested levels", "[solver]") {
   for (std::size_t k = 0; k < requested.size(); ++k) CHECK(landed[k] == requested[k]);  // bit-exact
 }
 
+TEST_CASE("the step controller leaves no sliver step before an output level", "[solver]") {
+  // Increment 0.1 from level 0.2: an output within 1.3 increments is landed on, one within two is
+  // approached half way (the plain rule took 0.1 and then a 0.02 sliver), a farther one gets a full step.
+  CHECK(next_step_level(0.2, 0.1, 0.3) == 0.3);
+  CHECK(next_step_level(0.2, 0.1, 0.33) == 0.33);
+  CHECK(next_step_level(0.2, 0.1, 0.38) == Approx(0.29));
+  CHECK(next_step_level(0.2, 0.1, 0.4) == Approx(0.3));
+  CHECK(next_step_level(0.2, 0.1, 0.9) == Approx(0.3));
+  CHECK(next_step_level(0.2, 0.1, 0.25) == 0.25);
+}
+
 TEST_CASE("load stepper cuts back after a failure and still reaches the end", "[solver]") {
   Compression c(0.4);
   Vector x = c.problem->reference_positions();
