@@ -185,9 +185,14 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
     vp.pressure_per_level_MPa = spec.max_pressure_kPa * kMPaPerKPa;
     const VolumeControlState before{prev.pressure_kPa / spec.max_pressure_kPa, prev.chamber_volume_mm3, 0,
                                     prev.tangent_positive_definite};
-    const VolumeControlResult vc = follow_volume(problem, x, level, solver, vp, step, &before);
+    VolumeControlSettings vc_settings;
+    vc_settings.verbose = spec.steps.verbose;
+    const VolumeControlResult vc = follow_volume(problem, x, level, solver, vp, step, &before, vc_settings);
     for (std::size_t i = 1; i < vc.states.size(); ++i)
-      out.beyond_limit.push_back({vc.states[i].level * spec.max_pressure_kPa, vc.states[i].volume, 0.0,
+      out.beyond_limit.push_back({vc.states[i].level * spec.max_pressure_kPa, vc.states[i].volume,
+                                  std::isnan(vc.states[i].level_slope_per_mm3)
+                                      ? 0.0
+                                      : vc.states[i].level_slope_per_mm3 * spec.max_pressure_kPa,
                                   vc.states[i].tangent_positive_definite, vc.states[i].iterations, false});
     out.path.stats.newton_iterations += vc.newton_iterations;
     take_solver_costs();

@@ -112,7 +112,7 @@ RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress) {
   });
   // A path that stopped early also reports the last state it reached: x is the state of the
   // largest pressure, which is past the last pressure-controlled one when volume control
-  // climbed further (its states carry no dp/dV: ≈ 0 there, by the pressure maximum).
+  // climbed further (its states carry dp/dV from the tangent of their last Newton iteration).
   if (out.path.outcome != PathOutcome::completed) {
     PressureState last = out.path.history.back();
     for (const PressureState& s : out.path.beyond_limit)

@@ -1,6 +1,7 @@
 #include "fem/solver/volume_control.hpp"
 
 #include <cmath>
+#include <iostream>
 #include "fem/core/number_text.hpp"
 
 namespace softarm::fem {
@@ -8,26 +9,48 @@ namespace {
 
 std::string fmt(double v) { return number_text(v, 5); }
 
-/// Newton on (x, λ) for V(x) = target; x and level are updated only on convergence.
+/// Newton on (x, λ) for V(x) = target, starting from `state` (x and its level);
+/// x, level and `state`'s other fields are updated only on convergence.
 bool solve_constrained(const EnergyProblem& problem, Vector& x, double& level, LinearSolver& solver,
-                       const VolumeControlProblem& vp, double target, const VolumeControlSettings& s, int& iterations,
-                       bool& positive_definite) {
+                       const VolumeControlProblem& vp, double target, const VolumeControlSettings& s,
+                       VolumeControlState& state) {
   Vector xt = x;
   double lt = level;
-  double scale0 = 0;
+  double scale0 = 0, best_residual = std::numeric_limits<double>::infinity();
+  int best_iteration = 0;
+  bool positive_definite = true;
+  double slope = std::numeric_limits<double>::quiet_NaN();
+  if (s.verbose)
+    std::cout << "  volume step to V = " << fmt(target) << " mm³\n    it   |r|/scale   |V-V*|/V*   level      tangent\n";
   for (int it = 0; it < s.max_iterations; ++it) {
     vp.apply_level(lt);
     const Evaluation e = problem.evaluate(xt, true, true);
-    if (!e.status.ok) return false;
+    if (!e.status.ok) {
+      if (s.verbose) std::cout << "    " << it << "  evaluation failed: " << e.status.reason << "\n";
+      return false;
+    }
     const double constraint = vp.volume(xt) - target;
     const double r = e.gradient.norm();
     if (it == 0) scale0 = std::max({r, e.force_scale(), 1e-12});
-    if (r <= s.residual_tolerance * std::max(scale0, e.force_scale()) &&
-        std::abs(constraint) <= s.volume_tolerance * std::abs(target)) {
+    const double relative = r / std::max(scale0, e.force_scale());
+    if (s.verbose)
+      std::cout << "    " << it << "  " << number_text(relative, 3) << "  " << number_text(std::abs(constraint / target), 3)
+                << "  " << fmt(lt) << "  " << (it == 0 ? "" : positive_definite ? "SPD" : "indefinite") << "\n";
+    if (relative <= s.residual_tolerance && std::abs(constraint) <= s.volume_tolerance * std::abs(target)) {
       x = xt;
       level = lt;
-      iterations = it;
+      state = {lt, vp.volume(xt), it, positive_definite, slope};
       return true;
+    }
+    // Newton with the exact tangent converges quadratically or not at all: a residual 100
+    // times above the best one so far, or no new best in 4 iterations, means it has left the
+    // solution's basin (by the thesis 3CA's top, Hex27, such iterations wandered between 1e-4
+    // and 1e-2 for 10-15 more LUs of 5 s each, until an element inverted).
+    const bool diverging = it >= 3 && relative > 100 * best_residual;
+    if (it >= 1 && relative < best_residual) best_residual = relative, best_iteration = it;
+    if (diverging || it - best_iteration >= 4) {
+      if (s.verbose) std::cout << "    not converging: the residual is above its best, of iteration " << best_iteration << "\n";
+      return false;
     }
     const LinearSolver::Status status = solver.factorize(e.hessian);
     if (status == LinearSolver::Status::singular) return false;
@@ -38,6 +61,7 @@ bool solve_constrained(const EnergyProblem& problem, Vector& x, double& level, L
     const Vector b = solver.solve(vp.pressure_per_level_MPa * g);
     const double gb = g.dot(b);
     if (!a.allFinite() || !b.allFinite() || !(std::abs(gb) > 0)) return false;
+    slope = 1 / gb;  // dλ/dV along the path: δλ = (δV − ∇V·a)/(∇V·b)
     const double dl = (-constraint - g.dot(a)) / gb;
     xt += a + dl * b;
     lt += dl;
@@ -61,10 +85,9 @@ VolumeControlResult follow_volume(const EnergyProblem& problem, Vector& x, doubl
   std::size_t best = out.states.size() - 1;
   const std::size_t first = out.states.size();  // states before this one were given, not computed
   while (static_cast<int>(out.states.size() - first) < settings.max_steps) {
-    int iterations = 0;
-    bool positive_definite = true;
+    VolumeControlState state;
     const double target = out.states.back().volume + step;
-    if (!solve_constrained(problem, x, level, solver, vp, target, settings, iterations, positive_definite)) {
+    if (!solve_constrained(problem, x, level, solver, vp, target, settings, state)) {
       step /= 2;
       if (step < min_step) {
         out.passed_peak = best > 0 && level < (1 - settings.drop_fraction) * best_level;
@@ -74,8 +97,8 @@ VolumeControlResult follow_volume(const EnergyProblem& problem, Vector& x, doubl
       }
       continue;
     }
-    out.newton_iterations += iterations;
-    out.states.push_back({level, vp.volume(x), iterations, positive_definite});
+    out.newton_iterations += state.iterations;
+    out.states.push_back(state);
     if (level > best_level) {
       best_level = level;
       best_x = x;
@@ -85,12 +108,18 @@ VolumeControlResult follow_volume(const EnergyProblem& problem, Vector& x, doubl
       out.message = "the pressure rose back to the full load at V = " + fmt(out.states.back().volume) + " mm³";
       break;
     }
-    if (level < (1 - settings.drop_fraction) * best_level && best > 0) {
+    // Past the maximum: the level has fallen clearly below it, or it has fallen at a state
+    // where the tangent itself says dλ/dV < 0 (the thesis 3CA's top, Hex27: a fall of 0.011 %
+    // on an indefinite tangent, then no volume step converged).
+    const bool fell = level < (1 - settings.drop_fraction) * best_level;
+    const bool descending = level < best_level && state.level_slope_per_mm3 < 0;
+    if ((fell || descending) && best > 0) {
       out.passed_peak = true;
-      out.message = "the pressure passed its maximum and fell to " + fmt(level / best_level * 100) + " % of it";
+      out.message = "the pressure passed its maximum and fell to " + fmt(level / best_level * 100) + " % of it" +
+                    (fell ? "" : ", where the tangent gives dp/dV < 0");
       break;
     }
-    if (iterations <= 4) step *= 1.5;
+    if (state.iterations <= 4) step *= 1.5;
   }
   if (out.message.empty())
     out.message = "no maximum within " + std::to_string(settings.max_steps) + " volume steps";

@@ -18,6 +18,7 @@
 // constraint; here the constraint is the chamber volume, the quantity a
 // syringe pump would prescribe).
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -34,12 +35,18 @@ struct VolumeControlSettings {
   double drop_fraction = 2e-4;       // the maximum is passed once λ falls this far below it: 10⁴ times the
                                      // equilibrium tolerance, so a fall is a fall (a Dragon Skin 10 RRA's
                                      // p(V) top is that flat before its Newton iterations stall)
+  bool verbose = false;              // print each volume step's Newton iterations (print_convergence_tables)
 };
 
 struct VolumeControlState {
   double level = 0, volume = 0;
   int iterations = 0;
   bool tangent_positive_definite = true;
+  /// dλ/dV = 1/(P ∇Vᵀ K⁻¹ ∇V) from the exact tangent of the last Newton iteration, 1/mm³
+  /// (NaN where not computed): negative only past a pressure maximum (K indefinite in a mode
+  /// that changes the volume); a negative eigenvalue in a mode the volume does not see (a
+  /// bifurcation) leaves it positive.
+  double level_slope_per_mm3 = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct VolumeControlResult {
@@ -59,7 +66,8 @@ struct VolumeControlProblem {
 
 /// From the equilibrium (x, level) follows the path in volume steps starting at
 /// `initial_volume_step` until the level has fallen `drop_fraction` below its
-/// maximum, returns to 1 or more (the chamber stiffens again), or the steps run
+/// maximum, or has fallen at all at a state whose own dλ/dV is negative (the
+/// tangent's answer, not the noise of a flat top), returns to 1 or more (the chamber stiffens again), or the steps run
 /// out. `previous`: the equilibrium state before (x, level) on the path, if known,
 /// so a maximum at (x, level) itself is recognised. On return x holds the state
 /// with the largest level and `level` its level; `states` starts with (x, level).
