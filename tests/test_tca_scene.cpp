@@ -130,3 +130,15 @@ TEST_CASE("SPL: a symmetric pose on the half model matches the full model, and a
   CHECK(loaded.curve.back().tip_position_mm.z() < full.curve.back().tip_position_mm.z());
   CHECK(loaded.mass_kg == Approx(full.mass_kg));  // the payload is not part of the arm
 }
+
+TEST_CASE("3CA: two runs take the same path (factor reuse's CG budget counts flops, not seconds)", "[tca_scene]") {
+  // With the budget timed as it ran, the load on the machine decided which Newton steps
+  // factorised, and the thesis 3CA's path differed run to run (17-24 load steps).
+  const auto a = run_tca_scene(short_tca_scene(true));
+  const auto b = run_tca_scene(short_tca_scene(true));
+  REQUIRE(a.path.reused_solves > 0);  // the budget was used
+  CHECK(a.path.path.stats.newton_iterations == b.path.path.stats.newton_iterations);
+  CHECK(a.path.factorizations == b.path.factorizations);
+  CHECK(a.path.cg_iterations == b.path.cg_iterations);
+  CHECK(a.curve.back().bending_angle_deg == b.curve.back().bending_angle_deg);
+}

@@ -40,8 +40,8 @@ class LinearSolver {
     bool upper = false;  // give CHOLMOD the upper (true) or lower (false) triangle
     double supernodal_switch = 40.0;  // CHOLMOD's flops/nnz(L) threshold for automatic mode
     bool large_supernodes = false;    // relaxed amalgamation nrelax {8, 32, 96}, zrelax {0.8, 0.2, 0.1}
-    /// CG iterations solve_reusing_factor may spend; 0: as many as cost half a factorisation, measured
-    /// (a fixed number makes the choice independent of timing, for tests).
+    /// CG iterations solve_reusing_factor may spend; 0: as many as cost half a factorisation
+    /// (reuse_cg_budget, from CHOLMOD's flop count: the same on every run).
     int reuse_cg_iterations = 0;
   };
 
@@ -62,10 +62,12 @@ class LinearSolver {
   /// K's pattern (preconditioned_cg.hpp), to ‖K d − b‖ ≤ tolerance·‖b‖. Returns false (d
   /// unspecified) when there is no such factor, when CG meets non-positive curvature (K is
   /// not positive definite), or when it has not converged within the iterations that cost
-  /// half a factorisation (measured: the last factorisation's time over one solve's); the
-  /// caller then factorises K.
+  /// half a factorisation (reuse_cg_budget); the caller then factorises K.
   bool solve_reusing_factor(const SparseMatrix& K, const Eigen::VectorXd& b, double tolerance, Eigen::VectorXd& d);
   Status status() const { return status_; }
+  /// CG iterations that cost about half a factorisation: from the analysis' flop count and
+  /// nnz(L), with the measured ratio of the two kinds of flop (linear_solver.cpp).
+  int reuse_cg_budget() const;
 
   // Timings of the last call, seconds (for benchmarks).
   double analyse_seconds = 0.0, factorize_seconds = 0.0, solve_seconds = 0.0;
@@ -103,9 +105,6 @@ class LinearSolver {
   bool shifted_ = false;  // the Cholesky factor is of K + σI
   static constexpr double kMinShift = 1e-6, kMaxShift = 1e2;  // σ / mean |diagonal|
   double last_shift_fraction_ = kMinShift * 10;  // s of the last accepted shift
-  // Durations of the last Cholesky factorisation and of the last solve with it, for
-  // solve_reusing_factor's budget.
-  double last_cholesky_seconds_ = 0.0, last_solve_seconds_ = 0.0;
 };
 
 }  // namespace softarm::fem
