@@ -115,6 +115,18 @@ TEST_CASE("the step controller leaves no sliver step before an output level", "[
   CHECK(next_step_level(0.2, 0.1, 0.25) == 0.25);
 }
 
+TEST_CASE("the predictor's parabola reproduces a quadratic path and the secant a linear one", "[solver]") {
+  // x(λ) = a + bλ + cλ² at three unequal levels, extrapolated to a fourth: exact for the parabola;
+  // the secant through the last two is exact only for c = 0 and off by c(λ − λ1)(λ − λ2) otherwise.
+  const Vector a = Vector::LinSpaced(5, 1.0, 2.0), b = Vector::LinSpaced(5, -3.0, 4.0), c = Vector::LinSpaced(5, 0.5, 9.0);
+  const auto path = [&](double l) -> Vector { return a + l * b + l * l * c; };
+  const Vector x0 = path(0.2), x1 = path(0.35), x2 = path(0.4);
+  const Vector parabola = extrapolate_state({0.2, 0.35, 0.4}, {&x0, &x1, &x2}, 0.55);
+  CHECK((parabola - path(0.55)).norm() < 1e-12 * path(0.55).norm());
+  const Vector secant = extrapolate_state({0.35, 0.4}, {&x1, &x2}, 0.55);
+  CHECK((secant - path(0.55) + (0.55 - 0.35) * (0.55 - 0.4) * c).norm() < 1e-12 * path(0.55).norm());
+}
+
 TEST_CASE("load stepper cuts back after a failure and still reaches the end", "[solver]") {
   Compression c(0.4);
   Vector x = c.problem->reference_positions();

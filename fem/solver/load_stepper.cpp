@@ -20,13 +20,25 @@ double next_step_level(double level, double increment, double target) {
   return level + increment;
 }
 
+Vector extrapolate_state(const std::vector<double>& levels, const std::vector<const Vector*>& states, double target) {
+  const std::size_t n = levels.size();
+  Vector x = Vector::Zero(states.front()->size());
+  for (std::size_t i = 0; i < n; ++i) {
+    double weight = 1;  // Lagrange basis polynomial i at the target
+    for (std::size_t j = 0; j < n; ++j)
+      if (j != i) weight *= (target - levels[j]) / (levels[i] - levels[j]);
+    x += weight * *states[i];
+  }
+  return x;
+}
+
 PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolver& solver,
                             const std::vector<double>& output_levels, const PathCallbacks& callbacks,
                             const NewtonSettings& newton, const StepSettings& settings) {
   PathResult result;
-  double level = 0.0, previous_level = 0.0;
-  Vector previous_x = x;
-  bool have_previous = false;
+  double level = 0.0, previous_level = 0.0, older_level = 0.0;
+  Vector previous_x = x, older_x;
+  int history = 0;  // converged states before x that the predictor may use (0, 1 or 2)
   double increment = settings.initial_increment;
   std::size_t next_output = 0;
   constexpr double kLandingTolerance = 1e-12;
@@ -38,10 +50,13 @@ PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolve
   // fails and a predictor was used) from the last converged state.
   auto try_step = [&](double next_level, bool lands) {
     for (int attempt = 0; attempt < 2; ++attempt) {
-      const bool predict = attempt == 0 && have_previous && level > previous_level;
+      const bool predict = attempt == 0 && history >= 1 && level > previous_level;
       if (attempt == 1) ++result.stats.second_starts;
       Vector trial = x;
-      if (predict) trial = x + (next_level - level) / (level - previous_level) * (x - previous_x);
+      if (predict && history >= 2 && previous_level > older_level)
+        trial = extrapolate_state({older_level, previous_level, level}, {&older_x, &previous_x, &x}, next_level);
+      else if (predict)
+        trial = extrapolate_state({previous_level, level}, {&previous_x, &x}, next_level);
       problem.apply_constraints(trial, next_level);
       NewtonReport report = solve_newton(problem, trial, solver, newton);
       result.stats.newton_iterations += report.iterations;
@@ -60,9 +75,10 @@ PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolve
         if (report.failure == Failure::unstable_branch) return false;
         continue;
       }
+      if (history >= 1) older_x = std::move(previous_x), older_level = previous_level;
       previous_x = x;
       previous_level = level;
-      have_previous = true;
+      history = std::min(history + 1, 2);
       x = std::move(trial);
       level = next_level;
       ++result.stats.steps;
