@@ -9,8 +9,8 @@ namespace {
 
 std::string fmt(double v) { return number_text(v, 5); }
 
-/// Newton on (x, λ) for V(x) = target, starting from `state` (x and its level);
-/// x, level and `state`'s other fields are updated only on convergence.
+/// Newton on (x, λ) for V(x) = target from (x, level); only on convergence are x and
+/// level updated and `state` set (with dλ/dV from the last iteration's tangent).
 bool solve_constrained(const EnergyProblem& problem, Vector& x, double& level, LinearSolver& solver,
                        const VolumeControlProblem& vp, double target, const VolumeControlSettings& s,
                        VolumeControlState& state) {
