@@ -39,7 +39,7 @@ bool solve_constrained(const EnergyProblem& problem, Vector& x, double& level, L
     if (relative <= s.residual_tolerance && std::abs(constraint) <= s.volume_tolerance * std::abs(target)) {
       x = xt;
       level = lt;
-      state = {lt, vp.volume(xt), it, positive_definite, slope};
+      state = {lt, target + constraint, it, positive_definite, slope};  // V(x) without evaluating it again
       return true;
     }
     // Newton with the exact tangent converges quadratically or not at all: a residual 100

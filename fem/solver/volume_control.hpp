@@ -67,8 +67,8 @@ struct VolumeControlProblem {
 /// From the equilibrium (x, level) follows the path in volume steps starting at
 /// `initial_volume_step` until the level has fallen `drop_fraction` below its
 /// maximum, or has fallen at all at a state whose own dλ/dV is negative (the
-/// tangent's answer, not the noise of a flat top), returns to 1 or more (the chamber stiffens again), or the steps run
-/// out. `previous`: the equilibrium state before (x, level) on the path, if known,
+/// tangent's answer, not the noise of a flat top), returns to 1 or more (the
+/// chamber stiffens again), or the steps run out. `previous`: the equilibrium state before (x, level) on the path, if known,
 /// so a maximum at (x, level) itself is recognised. On return x holds the state
 /// with the largest level and `level` its level; `states` starts with (x, level).
 VolumeControlResult follow_volume(const EnergyProblem& problem, Vector& x, double& level, LinearSolver& solver,
