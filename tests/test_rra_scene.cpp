@@ -135,6 +135,28 @@ TEST_CASE("chamber-volume control follows the ballooning tube past its pressure 
   CHECK(c.path.reached_pressure_kPa == Approx(r.path.estimated_limit_pressure_kPa).epsilon(2e-4));
 }
 
+TEST_CASE("volume control by CG on the augmented tangent finds the maximum its LU finds", "[rra][limit]") {
+  // The ballooning tube again, past its maximum both ways: each bordered step factorised (LU
+  // where K is indefinite), or solved by CG on K + α∇V∇Vᵀ preconditioned with the starting
+  // tangent's Cholesky factor (the 3D scenes' default). The two solve the same equations, so
+  // they must find the same maximum, the second with fewer LUs and with CG iterations instead.
+  const auto nh = test::material(std::make_shared<NeoHookean>(0.1153 / 2, VolumetricPolynomial({0.7029})), 1.08);
+  auto spec = plain_tube(nh, 60.0);
+  const auto lu = run_rra_scene(spec);
+  spec.path.limit.volume_control_by_cg = true;
+  const auto cg = run_rra_scene(spec);
+  INFO(lu.path.diagnosis << "\n" << cg.path.diagnosis);
+  REQUIRE(lu.path.outcome == PathOutcome::limit_point);
+  REQUIRE(cg.path.outcome == PathOutcome::limit_point);
+  CHECK(cg.path.estimated_limit_pressure_kPa == Approx(lu.path.estimated_limit_pressure_kPa).epsilon(1e-5));
+  REQUIRE(!cg.path.beyond_limit.empty());
+  CHECK(cg.path.beyond_limit.back().pv_stiffness_kPa_per_mm3 < 0);  // dp/dV by Sherman–Morrison: past the top
+  INFO("LUs " << lu.path.lu_fallbacks << " vs " << cg.path.lu_fallbacks << "; CG iterations " << lu.path.cg_iterations
+              << " vs " << cg.path.cg_iterations);
+  CHECK(cg.path.lu_fallbacks < lu.path.lu_fallbacks);
+  CHECK(cg.path.cg_iterations > lu.path.cg_iterations);
+}
+
 TEST_CASE("where dp/dV is blind to it, the tangent's lowest mode finds the limit point", "[rra][limit]") {
   // The ballooning tube again, with the dp/dV test switched off (a threshold it never reaches),
   // as for a long 3CA whose few ballooning gaps barely change the loaded volume: pressure control

@@ -187,6 +187,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
                                     prev.tangent_positive_definite};
     VolumeControlSettings vc_settings;
     vc_settings.verbose = spec.steps.verbose;
+    vc_settings.augmented_cg = spec.limit.volume_control_by_cg;
     const VolumeControlResult vc = follow_volume(problem, x, level, solver, vp, step, &before, vc_settings);
     for (std::size_t i = 1; i < vc.states.size(); ++i)
       out.beyond_limit.push_back({vc.states[i].level * spec.max_pressure_kPa, vc.states[i].volume,

@@ -50,6 +50,10 @@ struct LimitPointSettings {
   /// loaded volume does not show. Costs two factorisations and a few dozen solves, at a stall only.
   bool check_lowest_mode = true;
   double lowest_mode_fraction = 0.05;
+  /// Volume control solves its bordered systems by CG on K + α∇V∇Vᵀ preconditioned with the
+  /// starting tangent's Cholesky factor, factorising K (LU past the maximum) only where CG fails
+  /// (VolumeControlSettings::augmented_cg). The 3D scenes' default: their LU costs seconds.
+  bool volume_control_by_cg = false;
 };
 
 struct PressurePathResult {

@@ -73,6 +73,11 @@ void read_solver(JsonReader solver, fem::NewtonSettings& nw, fem::StepSettings& 
       "at a stall with dp/dV above the threshold, the tangent's lowest eigenvalue below this fraction of its value at "
       "rest is reported as a (local) limit point; 0 skips the check (two factorisations and a few dozen solves)");
   limit.check_lowest_mode = limit.lowest_mode_fraction > 0;
+  limit.volume_control_by_cg = solver.boolean(
+      "volume_control_by_cg", limit.volume_control_by_cg,
+      "volume control solves by CG on K + a*dV*dV^T preconditioned with the starting tangent's Cholesky factor, "
+      "factorising K (an LU past the maximum) only where CG fails (the 3D scenes' default; off: every iteration "
+      "factorises, the axisymmetric default)");
   solver.finish();
 }
 

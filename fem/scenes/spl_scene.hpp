@@ -38,7 +38,7 @@ struct SplSceneSpec {
   // 3D: no LU, factors reused, no iterating on an unstable branch (newton.hpp)
   NewtonSettings newton{.shift_indefinite_tangent = true, .reuse_factor = true, .max_indefinite_iterations = 4};
   StepSettings steps;
-  LimitPointSettings limit;
+  LimitPointSettings limit{.volume_control_by_cg = true};
 };
 
 struct SplJoint {

@@ -4,8 +4,13 @@
 
 namespace softarm::fem {
 
-CgResult preconditioned_cg(const SparseMatrix& K, const Eigen::VectorXd& b,
-                           const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& precondition,
+CgResult preconditioned_cg(const SparseMatrix& K, const Eigen::VectorXd& b, const LinearOperator& precondition,
+                           double tolerance, int max_iterations, Eigen::VectorXd& d) {
+  return preconditioned_cg([&K](const Eigen::VectorXd& p) { return Eigen::VectorXd(K * p); }, b, precondition,
+                           tolerance, max_iterations, d);
+}
+
+CgResult preconditioned_cg(const LinearOperator& apply, const Eigen::VectorXd& b, const LinearOperator& precondition,
                            double tolerance, int max_iterations, Eigen::VectorXd& d) {
   CgResult out;
   d = Eigen::VectorXd::Zero(b.size());
@@ -20,7 +25,7 @@ CgResult preconditioned_cg(const SparseMatrix& K, const Eigen::VectorXd& b,
   Eigen::VectorXd p = z;
   double rz = r.dot(z);
   for (int k = 0; k < max_iterations; ++k) {
-    const Eigen::VectorXd Kp = K * p;
+    const Eigen::VectorXd Kp = apply(p);
     const double curvature = p.dot(Kp);
     if (!(curvature > 0.0)) {  // also catches NaN
       out.negative_curvature = true;

@@ -22,9 +22,13 @@ struct CgResult {
   double relative_residual = 1.0;   // ‖b − K d‖ / ‖b‖ at the end
 };
 
+using LinearOperator = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
+
 /// Solves K d = b from d = 0; `precondition(r)` returns M⁻¹r. d holds the last iterate.
-CgResult preconditioned_cg(const SparseMatrix& K, const Eigen::VectorXd& b,
-                           const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& precondition,
+CgResult preconditioned_cg(const SparseMatrix& K, const Eigen::VectorXd& b, const LinearOperator& precondition,
+                           double tolerance, int max_iterations, Eigen::VectorXd& d);
+/// The same with K given by its action `apply(p)` = K p (a matrix plus a low-rank term).
+CgResult preconditioned_cg(const LinearOperator& apply, const Eigen::VectorXd& b, const LinearOperator& precondition,
                            double tolerance, int max_iterations, Eigen::VectorXd& d);
 
 }  // namespace softarm::fem

@@ -1,24 +1,79 @@
 #include "fem/solver/volume_control.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
+
 #include "fem/core/number_text.hpp"
+#include "fem/solver/preconditioned_cg.hpp"
 
 namespace softarm::fem {
 namespace {
 
 std::string fmt(double v) { return number_text(v, 5); }
 
+// The two solves of a bordered Newton step without factorising K, which past the maximum is
+// indefinite (LU: 3 s per iteration on the thesis 3CA in Hex20, 5 s in Hex27). Adding
+// α∇V(∇V·δx + c) = 0 to the first row leaves the bordered system's solution as it is:
+//   (K + α∇V∇Vᵀ) a = −r − αc∇V,   (K + α∇V∇Vᵀ) b = P∇V,   δλ = (−c − ∇V·a)/(∇V·b),   δx = a + δλ b,
+// with c = V − V*. By the matrix determinant lemma K + α∇V∇Vᵀ is positive definite where K's
+// one negative eigenvalue is in a mode that changes the volume and α > 1/|∇VᵀK⁻¹∇V| (past a
+// ballooning maximum, which is what volume control is for). CG solves it, preconditioned by the
+// Cholesky factor of the tangent where volume control started (an equilibrium of pressure
+// control, positive definite); the rank-one term adds one outlying eigenvalue, one more CG
+// iteration. dλ/dV follows by Sherman–Morrison: with t = ∇Vᵀ(K + α∇V∇Vᵀ)⁻¹∇V,
+// ∇VᵀK⁻¹∇V = t / (1 − αt). Where CG fails (a negative eigenvalue the volume does not see, or
+// the budget) the iteration factorises K as before.
+struct AugmentedSolves {
+  LinearSolver factor;   // Cholesky of the tangent at the start
+  double alpha = 0;      // 100 / ∇VᵀK₀⁻¹∇V: outlier eigenvalue ~100 of the preconditioned operator
+  int budget = 0;        // CG iterations per solve: 3 × the reuse budget, about an LU's cost for both
+  bool ready = false;
+
+  bool solve(const SparseMatrix& K, const Vector& g, const Vector& rhs, double tolerance, Vector& d) {
+    const LinearOperator apply = [&](const Vector& p) { return Vector(K * p + (alpha * g.dot(p)) * g); };
+    const CgResult cg = preconditioned_cg(apply, rhs, [this](const Vector& r) { return factor.solve(r); }, tolerance,
+                                          budget, d);
+    factor.cg_iterations += cg.iterations;
+    return cg.converged;
+  }
+};
+
+/// Factorises the tangent at the starting equilibrium for AugmentedSolves; not ready where
+/// that tangent is not positive definite.
+void prepare_augmented(const EnergyProblem& problem, const Vector& x, double level, const VolumeControlProblem& vp,
+                       AugmentedSolves& aug) {
+  vp.apply_level(level);
+  const Evaluation e = problem.evaluate(x, true, true);
+  if (!e.status.ok || aug.factor.factorize(e.hessian) != LinearSolver::Status::positive_definite) return;
+  Vector g = vp.volume_gradient(x);
+  problem.zero_prescribed(g);
+  const double compliance = g.dot(aug.factor.solve(g));
+  if (!(compliance > 0) || !std::isfinite(compliance)) return;
+  aug.alpha = 100 / compliance;
+  aug.budget = 3 * aug.factor.reuse_cg_budget();
+  aug.ready = true;
+}
+
+/// Adds the augmented solves' costs to the path's solver, whose totals the reports read.
+void add_costs(LinearSolver& to, const LinearSolver& from) {
+  to.analyse_seconds += from.analyse_seconds;
+  to.factorize_seconds += from.factorize_seconds;
+  to.solve_seconds += from.solve_seconds;
+  to.factorizations += from.factorizations;
+  to.cg_iterations += from.cg_iterations;
+}
+
 /// Newton on (x, λ) for V(x) = target from (x, level); only on convergence are x and
 /// level updated and `state` set (with dλ/dV from the last iteration's tangent).
 bool solve_constrained(const EnergyProblem& problem, Vector& x, double& level, LinearSolver& solver,
-                       const VolumeControlProblem& vp, double target, const VolumeControlSettings& s,
-                       VolumeControlState& state) {
+                       AugmentedSolves& aug, const VolumeControlProblem& vp, double target,
+                       const VolumeControlSettings& s, VolumeControlState& state) {
   Vector xt = x;
   double lt = level;
   double scale0 = 0, best_residual = std::numeric_limits<double>::infinity();
   int best_iteration = 0;
-  bool positive_definite = true;
+  bool positive_definite = true, by_cg = false;
   double slope = std::numeric_limits<double>::quiet_NaN();
   if (s.verbose)
     std::cout << "  volume step to V = " << fmt(target) << " mm³\n    it   |r|/scale   |V-V*|/V*   level      tangent\n";
@@ -35,7 +90,8 @@ bool solve_constrained(const EnergyProblem& problem, Vector& x, double& level, L
     const double relative = r / std::max(scale0, e.force_scale());
     if (s.verbose)
       std::cout << "    " << it << "  " << number_text(relative, 3) << "  " << number_text(std::abs(constraint / target), 3)
-                << "  " << fmt(lt) << "  " << (it == 0 ? "" : positive_definite ? "SPD" : "indefinite") << "\n";
+                << "  " << fmt(lt) << "  "
+                << (it == 0 ? "" : by_cg ? "CG (augmented)" : positive_definite ? "SPD" : "indefinite") << "\n";
     if (relative <= s.residual_tolerance && std::abs(constraint) <= s.volume_tolerance * std::abs(target)) {
       x = xt;
       level = lt;
@@ -52,17 +108,31 @@ bool solve_constrained(const EnergyProblem& problem, Vector& x, double& level, L
       if (s.verbose) std::cout << "    not converging: the residual is above its best, of iteration " << best_iteration << "\n";
       return false;
     }
-    const LinearSolver::Status status = solver.factorize(e.hessian);
-    if (status == LinearSolver::Status::singular) return false;
-    positive_definite = status == LinearSolver::Status::positive_definite;
     Vector g = vp.volume_gradient(xt);
     problem.zero_prescribed(g);
-    const Vector a = solver.solve(-e.gradient);
-    const Vector b = solver.solve(vp.pressure_per_level_MPa * g);
-    const double gb = g.dot(b);
-    if (!a.allFinite() || !b.allFinite() || !(std::abs(gb) > 0)) return false;
+    const double P = vp.pressure_per_level_MPa;
+    Vector a, b;
+    double gb = 0, pivot = 0;  // ∇V·K⁻¹(P∇V), and the ∇V·b that δλ divides by
+    // Inexact Newton (Eisenstat & Walker): CG to a hundredth of the relative residual, at most
+    // 1e-6, which keeps the convergence quadratic near the solution.
+    const double forcing = std::clamp(1e-2 * relative, 1e-12, 1e-6);
+    by_cg = aug.ready && aug.solve(e.hessian, g, Vector(-e.gradient - (aug.alpha * constraint) * g), forcing, a) &&
+            aug.solve(e.hessian, g, Vector(P * g), forcing, b);
+    if (by_cg) {
+      pivot = g.dot(b);
+      gb = pivot / (1 - aug.alpha * pivot / P);
+      positive_definite = gb > 0;  // K is not factorised: only dp/dV < 0 certifies it indefinite
+    } else {
+      const LinearSolver::Status status = solver.factorize(e.hessian);
+      if (status == LinearSolver::Status::singular) return false;
+      positive_definite = status == LinearSolver::Status::positive_definite;
+      a = solver.solve(-e.gradient);
+      b = solver.solve(P * g);
+      gb = pivot = g.dot(b);
+    }
+    if (!a.allFinite() || !b.allFinite() || !(std::abs(pivot) > 0) || !std::isfinite(gb)) return false;
     slope = 1 / gb;  // dλ/dV along the path: δλ = (δV − ∇V·a)/(∇V·b)
-    const double dl = (-constraint - g.dot(a)) / gb;
+    const double dl = (-constraint - g.dot(a)) / pivot;
     xt += a + dl * b;
     lt += dl;
     if (!std::isfinite(lt)) return false;
@@ -84,10 +154,12 @@ VolumeControlResult follow_volume(const EnergyProblem& problem, Vector& x, doubl
   out.states.push_back({level, vp.volume(x), 0, true});
   std::size_t best = out.states.size() - 1;
   const std::size_t first = out.states.size();  // states before this one were given, not computed
+  AugmentedSolves aug;
+  if (settings.augmented_cg) prepare_augmented(problem, x, level, vp, aug);
   while (static_cast<int>(out.states.size() - first) < settings.max_steps) {
     VolumeControlState state;
     const double target = out.states.back().volume + step;
-    if (!solve_constrained(problem, x, level, solver, vp, target, settings, state)) {
+    if (!solve_constrained(problem, x, level, solver, aug, vp, target, settings, state)) {
       step /= 2;
       if (step < min_step) {
         out.passed_peak = best > 0 && level < (1 - settings.drop_fraction) * best_level;
@@ -141,6 +213,7 @@ VolumeControlResult follow_volume(const EnergyProblem& problem, Vector& x, doubl
     }
   }
   out.states.erase(out.states.begin(), out.states.begin() + static_cast<std::ptrdiff_t>(first - 1));  // from the start
+  add_costs(solver, aug.factor);
   x = best_x;
   level = best_level;
   vp.apply_level(level);

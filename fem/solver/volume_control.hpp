@@ -13,8 +13,8 @@
 //   K a = −r,   K b = P ∇V,   δλ = (V* − V − ∇V·a) / (∇V·b),   δx = a + δλ b.
 // The bordered matrix [K, −P∇V; ∇Vᵀ, 0] stays regular at the pressure maximum,
 // where K alone turns singular; past it K is indefinite and the linear solver
-// takes its LU route (Crisfield, Non-linear Finite Element Analysis of Solids
-// and Structures, vol. 1, §9.2–9.3: displacement control by a single
+// takes its LU route, or (augmented_cg) CG on K + α∇V∇Vᵀ (Crisfield, Non-linear
+// Finite Element Analysis of Solids and Structures, vol. 1, §9.2–9.3: displacement control by a single
 // constraint; here the constraint is the chamber volume, the quantity a
 // syringe pump would prescribe).
 #include <functional>
@@ -36,6 +36,11 @@ struct VolumeControlSettings {
                                      // equilibrium tolerance, so a fall is a fall (a Dragon Skin 10 RRA's
                                      // p(V) top is that flat before its Newton iterations stall)
   bool verbose = false;              // print each volume step's Newton iterations (print_convergence_tables)
+  // Solve each Newton iteration's two systems by CG on K + α∇V∇Vᵀ, preconditioned with the
+  // Cholesky factor of the starting tangent, and factorise K only where that fails
+  // (volume_control.cpp). For 3D bodies, whose indefinite K costs an LU of seconds; the
+  // axisymmetric scenes' LU is cheap and exact.
+  bool augmented_cg = false;
 };
 
 struct VolumeControlState {
