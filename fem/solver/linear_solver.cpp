@@ -185,10 +185,16 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) {
 
 bool LinearSolver::solve_reusing_factor(const SparseMatrix& K, const Eigen::VectorXd& b, double tolerance,
                                         Eigen::VectorXd& d) {
-  if (status_ != Status::positive_definite || shifted_) return false;
   const int budget = options_.reuse_cg_iterations > 0 ? options_.reuse_cg_iterations : reuse_cg_budget();
+  return solve_reusing_factor([&K](const Eigen::VectorXd& p) { return Eigen::VectorXd(K * p); }, b, tolerance, budget,
+                              d);
+}
+
+bool LinearSolver::solve_reusing_factor(const LinearOperator& apply, const Eigen::VectorXd& b, double tolerance,
+                                        int max_iterations, Eigen::VectorXd& d) {
+  if (status_ != Status::positive_definite || shifted_) return false;
   const CgResult cg =
-      preconditioned_cg(K, b, [this](const Eigen::VectorXd& r) { return solve(r); }, tolerance, budget, d);
+      preconditioned_cg(apply, b, [this](const Eigen::VectorXd& r) { return solve(r); }, tolerance, max_iterations, d);
   cg_iterations += cg.iterations;
   if (cg.converged) ++reused_solves;
   return cg.converged;

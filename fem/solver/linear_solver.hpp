@@ -19,6 +19,7 @@
 #include <memory>
 
 #include "fem/assembly/sparse_pattern.hpp"
+#include "fem/solver/preconditioned_cg.hpp"
 
 namespace softarm::fem {
 
@@ -64,6 +65,10 @@ class LinearSolver {
   /// not positive definite), or when it has not converged within the iterations that cost
   /// half a factorisation (reuse_cg_budget); the caller then factorises K.
   bool solve_reusing_factor(const SparseMatrix& K, const Eigen::VectorXd& b, double tolerance, Eigen::VectorXd& d);
+  /// The same for an operator given by its action (a matrix plus a low-rank term) and an
+  /// explicit CG budget.
+  bool solve_reusing_factor(const LinearOperator& apply, const Eigen::VectorXd& b, double tolerance,
+                            int max_iterations, Eigen::VectorXd& d);
   Status status() const { return status_; }
   /// CG iterations that cost about half a factorisation: from the analysis' flop count and
   /// nnz(L), with the measured ratio of the two kinds of flop (linear_solver.cpp).

@@ -25,35 +25,28 @@ std::string fmt(double v) { return number_text(v, 5); }
 // ∇VᵀK⁻¹∇V = t / (1 − αt). Where CG fails (a negative eigenvalue the volume does not see, or
 // the budget) the iteration factorises K as before.
 struct AugmentedSolves {
+  bool wanted = false;   // VolumeControlSettings::augmented_cg
+  bool prepared = false;
   LinearSolver factor;   // Cholesky of the tangent at the start
   double alpha = 0;      // 100 / ∇VᵀK₀⁻¹∇V: outlier eigenvalue ~100 of the preconditioned operator
   int budget = 0;        // CG iterations per solve: 3 × the reuse budget, about an LU's cost for both
-  bool ready = false;
 
+  /// From the tangent K₀ and ∇V at the starting equilibrium (the first iteration of the first
+  /// volume step, so K₀ is assembled once); unusable where K₀ is not positive definite.
+  void prepare(const SparseMatrix& K0, const Vector& g) {
+    prepared = true;
+    if (factor.factorize(K0) != LinearSolver::Status::positive_definite) return;
+    const double compliance = g.dot(factor.solve(g));
+    if (!(compliance > 0) || !std::isfinite(compliance)) return;
+    alpha = 100 / compliance;
+    budget = 3 * factor.reuse_cg_budget();
+  }
   bool solve(const SparseMatrix& K, const Vector& g, const Vector& rhs, double tolerance, Vector& d) {
+    if (!(alpha > 0)) return false;
     const LinearOperator apply = [&](const Vector& p) { return Vector(K * p + (alpha * g.dot(p)) * g); };
-    const CgResult cg = preconditioned_cg(apply, rhs, [this](const Vector& r) { return factor.solve(r); }, tolerance,
-                                          budget, d);
-    factor.cg_iterations += cg.iterations;
-    return cg.converged;
+    return factor.solve_reusing_factor(apply, rhs, tolerance, budget, d);
   }
 };
-
-/// Factorises the tangent at the starting equilibrium for AugmentedSolves; not ready where
-/// that tangent is not positive definite.
-void prepare_augmented(const EnergyProblem& problem, const Vector& x, double level, const VolumeControlProblem& vp,
-                       AugmentedSolves& aug) {
-  vp.apply_level(level);
-  const Evaluation e = problem.evaluate(x, true, true);
-  if (!e.status.ok || aug.factor.factorize(e.hessian) != LinearSolver::Status::positive_definite) return;
-  Vector g = vp.volume_gradient(x);
-  problem.zero_prescribed(g);
-  const double compliance = g.dot(aug.factor.solve(g));
-  if (!(compliance > 0) || !std::isfinite(compliance)) return;
-  aug.alpha = 100 / compliance;
-  aug.budget = 3 * aug.factor.reuse_cg_budget();
-  aug.ready = true;
-}
 
 /// Adds the augmented solves' costs to the path's solver, whose totals the reports read.
 void add_costs(LinearSolver& to, const LinearSolver& from) {
@@ -116,7 +109,8 @@ bool solve_constrained(const EnergyProblem& problem, Vector& x, double& level, L
     // Inexact Newton (Eisenstat & Walker): CG to a hundredth of the relative residual, at most
     // 1e-6, which keeps the convergence quadratic near the solution.
     const double forcing = std::clamp(1e-2 * relative, 1e-12, 1e-6);
-    by_cg = aug.ready && aug.solve(e.hessian, g, Vector(-e.gradient - (aug.alpha * constraint) * g), forcing, a) &&
+    if (aug.wanted && !aug.prepared) aug.prepare(e.hessian, g);
+    by_cg = aug.solve(e.hessian, g, Vector(-e.gradient - (aug.alpha * constraint) * g), forcing, a) &&
             aug.solve(e.hessian, g, Vector(P * g), forcing, b);
     if (by_cg) {
       pivot = g.dot(b);
@@ -155,7 +149,7 @@ VolumeControlResult follow_volume(const EnergyProblem& problem, Vector& x, doubl
   std::size_t best = out.states.size() - 1;
   const std::size_t first = out.states.size();  // states before this one were given, not computed
   AugmentedSolves aug;
-  if (settings.augmented_cg) prepare_augmented(problem, x, level, vp, aug);
+  aug.wanted = settings.augmented_cg;
   while (static_cast<int>(out.states.size() - first) < settings.max_steps) {
     VolumeControlState state;
     const double target = out.states.back().volume + step;

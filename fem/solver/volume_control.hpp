@@ -13,10 +13,10 @@
 //   K a = −r,   K b = P ∇V,   δλ = (V* − V − ∇V·a) / (∇V·b),   δx = a + δλ b.
 // The bordered matrix [K, −P∇V; ∇Vᵀ, 0] stays regular at the pressure maximum,
 // where K alone turns singular; past it K is indefinite and the linear solver
-// takes its LU route, or (augmented_cg) CG on K + α∇V∇Vᵀ (Crisfield, Non-linear
-// Finite Element Analysis of Solids and Structures, vol. 1, §9.2–9.3: displacement control by a single
-// constraint; here the constraint is the chamber volume, the quantity a
-// syringe pump would prescribe).
+// takes its LU route, or (augmented_cg) CG on K + α∇V∇Vᵀ (Crisfield,
+// Non-linear Finite Element Analysis of Solids and Structures, vol. 1,
+// §9.2–9.3: displacement control by a single constraint; here the constraint
+// is the chamber volume, the quantity a syringe pump would prescribe).
 #include <functional>
 #include <limits>
 #include <string>
@@ -73,8 +73,9 @@ struct VolumeControlProblem {
 /// `initial_volume_step` until the level has fallen `drop_fraction` below its
 /// maximum, or has fallen at all at a state whose own dλ/dV is negative (the
 /// tangent's answer, not the noise of a flat top), returns to 1 or more (the
-/// chamber stiffens again), or the steps run out. `previous`: the equilibrium state before (x, level) on the path, if known,
-/// so a maximum at (x, level) itself is recognised. On return x holds the state
+/// chamber stiffens again), or the steps run out. `previous`: the equilibrium
+/// state before (x, level) on the path, if known, so a maximum at (x, level)
+/// itself is recognised. On return x holds the state
 /// with the largest level and `level` its level; `states` starts with (x, level).
 VolumeControlResult follow_volume(const EnergyProblem& problem, Vector& x, double& level, LinearSolver& solver,
                                   const VolumeControlProblem& vp, double initial_volume_step,
