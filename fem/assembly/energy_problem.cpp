@@ -37,6 +37,14 @@ void EnergyProblem::zero_prescribed(Vector& v) const {
   for (int d : constraints_.dofs) v[d] = 0.0;
 }
 
+Vector EnergyProblem::advanced(const Vector& x, const Vector& dx) const {
+  Vector out = x + dx;
+  if (inclusions_.empty()) return out;
+  inclusions_.correct_update(x, dx, out);
+  for (int d : constraints_.dofs) out[d] = x[d] + dx[d];
+  return out;
+}
+
 Evaluation EnergyProblem::evaluate(const Vector& x, bool want_gradient, bool want_hessian) const {
   if (!pattern_.finalized()) throw std::logic_error("EnergyProblem::evaluate before finalize()");
   const auto t0 = std::chrono::steady_clock::now();

@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "fem/assembly/stiff_inclusions.hpp"
 #include "fem/forms/form.hpp"
 
 namespace softarm::fem {
@@ -55,6 +56,13 @@ class EnergyProblem {
   /// Zeroes the prescribed entries of a dof vector.
   void zero_prescribed(Vector& v) const;
 
+  /// Stiff parts whose rotations the update and the predictor treat exactly (stiff_inclusions.hpp).
+  void set_stiff_inclusions(StiffInclusions inclusions) { inclusions_ = std::move(inclusions); }
+  const StiffInclusions& stiff_inclusions() const { return inclusions_; }
+  /// x ⊕ δx: x + δx, except that each stiff inclusion's best-fit rotation is applied as a finite
+  /// rotation; prescribed dofs get exactly x + δx. Without inclusions, x + δx.
+  Vector advanced(const Vector& x, const Vector& dx) const;
+
   /// Accumulated wall time spent in evaluate() and the number of calls (benchmarks).
   double assembly_seconds() const { return assembly_seconds_; }
   int evaluations() const { return evaluations_; }
@@ -65,6 +73,7 @@ class EnergyProblem {
   std::vector<char> prescribed_;
   std::vector<std::shared_ptr<Form>> forms_;
   SparsePattern pattern_;
+  StiffInclusions inclusions_;
   mutable double assembly_seconds_ = 0.0;
   mutable int evaluations_ = 0;
 };

@@ -60,6 +60,10 @@ void read_solver(JsonReader solver, fem::NewtonSettings& nw, fem::StepSettings& 
       "max_indefinite_iterations", nw.max_indefinite_iterations, Range::closed(0, 1000),
       "a Newton step gives up (and the load step is cut back) after this many iterations in a row on an indefinite "
       "tangent: no stable equilibrium near that load; 0: never (the 3D scenes' default is 4)");
+  nw.rotate_stiff_parts = solver.boolean(
+      "rotate_stiff_parts", nw.rotate_stiff_parts,
+      "Newton's update applies each stiff part's (ABS ring's, connector's) best-fit rotation as a finite rotation, so "
+      "a step that bends the actuator does not stretch its rings (the 3D scenes' default; off: the plain update x + dx)");
   st.verbose = solver.boolean("print_convergence_tables", false, "print a Newton convergence table for every step");
   limit.stiffness_fraction =
       solver.number("limit_point_stiffness_fraction", limit.stiffness_fraction, Range::open(0, 1),

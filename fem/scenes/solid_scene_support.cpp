@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "fem/elements/reference_quadrature.hpp"
 
@@ -134,6 +135,16 @@ FacePose face_pose(const std::vector<int>& nodes, const Vector& rest, const Vect
   pose.position_mm = c1;
   pose.tilt_deg = std::acos(std::clamp((pose.rotation * Eigen::Vector3d::UnitZ()).z(), -1.0, 1.0)) * 180 / kPi;
   return pose;
+}
+
+StiffInclusions stiff_parts(const Mesh& mesh, const std::vector<Material>& part_materials) {
+  double softest = std::numeric_limits<double>::infinity();
+  for (const auto& m : part_materials) softest = std::min(softest, m.law->initial_shear_modulus());
+  std::vector<int> stiff;
+  for (std::size_t p = 0; p < part_materials.size(); ++p)
+    if (part_materials[p].law->initial_shear_modulus() >= kStiffInclusionRatio * softest)
+      stiff.push_back(static_cast<int>(p));
+  return StiffInclusions::of_parts(mesh, stiff);
 }
 
 }  // namespace softarm::fem

@@ -56,6 +56,12 @@ inline ElementIntegration hex20_integration(const Mesh& mesh, ElementIntegration
   return mesh.dim == 3 && mesh.nodes_per_element == 20 ? asked : ElementIntegration::full;
 }
 
+/// The parts whose initial shear modulus is at least kStiffInclusionRatio times the softest
+/// part's (the ABS rings and connectors among silicones, ~3,000×), as StiffInclusions: their
+/// rotations are applied exactly by Newton's update and the predictor.
+constexpr double kStiffInclusionRatio = 100.0;
+StiffInclusions stiff_parts(const Mesh& mesh, const std::vector<Material>& part_materials);
+
 /// The node set `clamped` fixed in all directions; the "symmetry" set (if any) keeps u_y = 0.
 DirichletConstraints clamped_with_symmetry(const Mesh& mesh, const std::string& clamped);
 

@@ -56,6 +56,7 @@ SplResult run_spl_scene(const SplSceneSpec& spec, const std::function<void(const
   load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
   EnergyProblem problem(flattened_positions(mesh), clamped_with_symmetry(mesh, "top"));
   problem.add_form(elastic);
+  if (spec.newton.rotate_stiff_parts) problem.set_stiff_inclusions(stiff_parts(mesh, materials));
   PressurePathSpec path;
   const ChamberLoads chambers = add_chamber_loads(
       mesh, {spec.chamber_pressure_kPa.begin(), spec.chamber_pressure_kPa.end()}, load, problem);

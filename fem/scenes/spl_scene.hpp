@@ -35,8 +35,9 @@ struct SplSceneSpec {
   double tip_mass_kg = 0;
   bool allow_symmetry = true;
   std::vector<double> output_levels;                      // fractions of the peaks; last = 1
-  // 3D: no LU, factors reused, no iterating on an unstable branch (newton.hpp)
-  NewtonSettings newton{.shift_indefinite_tangent = true, .reuse_factor = true, .max_indefinite_iterations = 4};
+  // 3D: no LU, factors reused, no iterating on an unstable branch, stiff parts rotated exactly (newton.hpp)
+  NewtonSettings newton{.shift_indefinite_tangent = true, .reuse_factor = true, .max_indefinite_iterations = 4,
+                        .rotate_stiff_parts = true};
   StepSettings steps;
   LimitPointSettings limit{.volume_control_by_cg = true};
 };

@@ -46,8 +46,9 @@ struct TcaSceneSpec {
   bool allow_symmetry = true;                               // false: always the full model
   std::vector<double> output_pressures_kPa;                 // of the most pressurised chamber; last = its peak
   double target_bending_deg = 90;                           // report the pressure that reaches it
-  // 3D: no LU, factors reused, no iterating on an unstable branch (newton.hpp)
-  NewtonSettings newton{.shift_indefinite_tangent = true, .reuse_factor = true, .max_indefinite_iterations = 4};
+  // 3D: no LU, factors reused, no iterating on an unstable branch, stiff parts rotated exactly (newton.hpp)
+  NewtonSettings newton{.shift_indefinite_tangent = true, .reuse_factor = true, .max_indefinite_iterations = 4,
+                        .rotate_stiff_parts = true};
   StepSettings steps;
   LimitPointSettings limit{.volume_control_by_cg = true};
 };

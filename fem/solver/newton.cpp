@@ -93,8 +93,10 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
     double alpha = 1.0;
     bool accepted = false;
     Evaluation trial;
+    Vector x_trial;
     for (int ls = 0; ls < settings.max_line_search; ++ls, alpha *= 0.5) {
-      trial = problem.evaluate(x + alpha * dx, true, true);
+      x_trial = problem.advanced(x, alpha * dx);  // x + αδx, stiff inclusions rotated exactly
+      trial = problem.evaluate(x_trial, true, true);
       if (!trial.status.ok) continue;
       const double roundoff = 1e-12 * (std::abs(cur.energy) + std::abs(trial.energy));
       const bool armijo = trial.energy <= cur.energy + 1e-4 * alpha * std::min(slope, 0.0) + roundoff;
@@ -109,7 +111,7 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
                                        : trial.status.reason + " for every step length tried";
       break;
     }
-    x += alpha * dx;
+    x = std::move(x_trial);
     const double energy_norm = std::abs(slope) * alpha;
     if (it == 0) energy_norm0 = std::max(energy_norm, 1e-300);
     last_update = alpha * dx.norm() / std::max((x - X).norm(), 1e-3);

@@ -127,7 +127,7 @@ bool solve_constrained(const EnergyProblem& problem, Vector& x, double& level, L
     if (!a.allFinite() || !b.allFinite() || !(std::abs(pivot) > 0) || !std::isfinite(gb)) return false;
     slope = 1 / gb;  // dλ/dV along the path: δλ = (δV − ∇V·a)/(∇V·b)
     const double dl = (-constraint - g.dot(a)) / pivot;
-    xt += a + dl * b;
+    xt = problem.advanced(xt, a + dl * b);
     lt += dl;
     if (!std::isfinite(lt)) return false;
   }
