@@ -4,6 +4,10 @@
 // of a path it cannot finish.
 #include <Eigen/Eigenvalues>
 #include <catch2/catch.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 
 #include "fem/forms/elastic_form.hpp"
 #include "fem/mesh/structured_mesh.hpp"
@@ -77,17 +81,71 @@ namespace {
 struct Compression {
   Mesh mesh = rectangle_mesh(0.0, 1.0, 0.0, 1.0, 4, 4, 0.0);
   std::unique_ptr<EnergyProblem> problem;
-  Compression(double final_height) {
+  explicit Compression(double final_height, std::shared_ptr<Form> extra = nullptr) {
     DirichletConstraints c;
     for (int n : mesh.node_sets.at("axis")) c.fix(2 * n);
     for (int n : mesh.node_sets.at("bottom")) c.fix(2 * n + 1);
     for (int n : mesh.node_sets.at("top")) c.fix(2 * n + 1, final_height - 1.0);
     problem = std::make_unique<EnergyProblem>(flattened_positions(mesh), c);
     problem->add_form(make_elastic_form(mesh, {test::neo_hookean(1.0, 50.0)}));
+    if (extra) problem->add_form(extra);
     problem->finalize();
   }
 };
+
+/// A round-off floor: a gradient term of fixed size whose direction is a hash of x's bits, so
+/// that no Newton step removes it (as the rounding of large cancelling ABS forces), with no
+/// energy and no Hessian.
+class RoundoffFloor : public Form {
+ public:
+  double amplitude = 0;  // per dof
+  std::string name() const override { return "round-off floor"; }
+  void declare_pattern(SparsePattern&) override {}
+  FormStatus add(const Vector& x, double*, Vector* gradient, HessianAccumulator*) const override {
+    if (!gradient) return FormStatus::fine();
+    std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the bits of x, then an LCG
+    for (int i = 0; i < x.size(); ++i) {
+      std::uint64_t bits;
+      std::memcpy(&bits, &x[i], sizeof bits);
+      h = (h ^ bits) * 1099511628211ull;
+    }
+    for (int i = 0; i < x.size(); ++i) {
+      h = h * 6364136223846793005ull + 1442695040888963407ull;
+      (*gradient)[i] += amplitude * (static_cast<double>(h >> 11) / 9007199254740992.0 * 2 - 1);
+    }
+    return FormStatus::fine();
+  }
+};
 }  // namespace
+
+TEST_CASE("Newton stops at a round-off floor instead of iterating on it", "[solver]") {
+  // A start next to equilibrium (residual 1e-5 of the force scale) on a problem whose residual
+  // cannot fall below ~3e-8 of it: the energy norm, relative to a first value that was already
+  // tiny, never reaches 1e-12, so Newton used to spend all its iterations (the SPL pose: 20
+  // iterations at 3e-8, twice). Now it stops once the residual no longer falls.
+  auto floor = std::make_shared<RoundoffFloor>();
+  Compression c(0.7, floor);
+  Vector x = c.problem->reference_positions();
+  LinearSolver solver;
+  const PathCallbacks none{[](double) {}, [](double, const Vector&, bool, const NewtonReport&) {}};
+  REQUIRE(follow_load_path(*c.problem, x, solver, {1.0}, none, NewtonSettings{}, StepSettings{}).completed);  // no floor yet
+  const Evaluation e = c.problem->evaluate(x, true, false);
+  const double scale = e.force_scale();
+  const int free_dofs = c.problem->num_dofs() - static_cast<int>(std::count(c.problem->is_prescribed().begin(),
+                                                                             c.problem->is_prescribed().end(), 1));
+  floor->amplitude = 3e-8 * scale / std::sqrt(static_cast<double>(free_dofs));
+  Vector nudge = Vector::LinSpaced(x.size(), -1.0, 1.0);
+  c.problem->zero_prescribed(nudge);
+  const double stiffness = 1.0;  // the shear modulus: a nudge of 1e-5 moves the residual by ~1e-5 of the scale
+  x += 1e-5 * scale / stiffness / nudge.norm() * nudge;
+  const NewtonReport report = solve_newton(*c.problem, x, solver, NewtonSettings{});
+  CAPTURE(report.iterations, report.message);
+  REQUIRE(report.converged);
+  CHECK(report.iterations <= 5);
+  const double residual = c.problem->evaluate(x, true, false).gradient.norm() / scale;
+  CHECK(residual > NewtonSettings{}.residual_tolerance);  // it did sit above the tolerance
+  CHECK(residual < 100 * NewtonSettings{}.residual_tolerance);
+}
 
 TEST_CASE("load stepper lands exactly on the requested levels", "[solver]") {
   Compression c(0.7);
@@ -314,4 +372,26 @@ TEST_CASE("Newton reusing factors reaches the same path with fewer factorisation
   CHECK((x_reused - x_exact).norm() < 1e-6 * x_exact.norm());
   CHECK(reusing.reused_solves > 0);
   CHECK(reusing.factorizations < exact.factorizations);
+}
+
+TEST_CASE("a plain first step that fails on indefinite tangents does not make the steps creep up to it",
+          "[solver]") {
+  // Compressing to 40 % in one step from rest meets indefinite tangents (elements near inversion)
+  // and gives up as an unstable branch. That says nothing of the path: the steps after the cut-back
+  // grow as usual instead of halving their distance to the failed level (before: 6 halved steps
+  // and 11 in all; now 7).
+  Compression c(0.4);
+  Vector x = c.problem->reference_positions();
+  LinearSolver solver;
+  NewtonSettings newton;
+  newton.shift_indefinite_tangent = true;
+  newton.max_indefinite_iterations = 1;
+  StepSettings steps;
+  steps.initial_increment = 1.0;
+  const PathCallbacks none{[](double) {}, [](double, const Vector&, bool, const NewtonReport&) {}};
+  const auto r = follow_load_path(*c.problem, x, solver, {1.0}, none, newton, steps);
+  CAPTURE(r.stats.failed_levels, r.stats.halved_steps, r.stats.steps, r.message);
+  REQUIRE(!r.stats.failed_levels.empty());
+  CHECK(r.stats.failed_levels.front() == 1.0);
+  CHECK(r.stats.halved_steps == 0);
 }

@@ -7,7 +7,8 @@
 // secant through two at the start of the path); if Newton fails
 // from the predicted state the step is retried from the last state, except after
 // an unstable branch (only indefinite tangents: no equilibrium near that load),
-// after which the steps halve their distance to that level instead of trying it again.
+// after which the steps halve their distance to that level instead of trying it again
+// (where a predicted start failed so: a plain one may fail merely by overshooting).
 // A path that cannot be continued returns what it reached and why.
 #include <functional>
 #include <string>

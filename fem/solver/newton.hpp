@@ -4,7 +4,8 @@
 // larger of the first iteration's residual and the load's force scale, AND
 // either the update normalised by the displacement or the energy norm |δx·r|
 // normalised by its first value; or, when the residual sits on its round-off
-// floor, update and energy norm both below tolerance. One row per iteration is kept for the
+// floor, update and energy norm both below tolerance, or the update below
+// tolerance and the residual no longer falling, within 100× its tolerance. One row per iteration is kept for the
 // convergence table.
 #include <ostream>
 #include <vector>
