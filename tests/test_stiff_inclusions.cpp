@@ -16,8 +16,8 @@
 using namespace softarm::fem;
 
 namespace {
-/// Two separate ring-like groups of 3D points (a hexagon at z = 0 and one at z = 5, not
-/// touching), as the node positions of a "mesh" with no elements.
+/// Two separate rings of 8 nodes (radius 10 at z = 0 and radius 6 at z = 5, alternate nodes
+/// raised by 0.3), one "element" each: enough of a mesh for grouping and the update.
 Mesh two_rings() {
   Mesh m;
   m.dim = 3;
