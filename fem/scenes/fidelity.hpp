@@ -25,7 +25,7 @@ struct ModelLevel {
   int mesh_level = 1, element_order = 2;
   double error_percent = 0;       // measured, against `reference`; 0 for the reference itself
   std::string error_measure;      // what was compared
-  double seconds = 0;             // typical wall time on one core of this machine
+  double seconds = 0;             // typical wall time on this 2-core machine (threads: see each ladder)
   int dofs = 0;
   bool serendipity = false;       // 3D: Hex20 instead of Hex27 (element_order 2)
   bool reduced_integration = false;  // 3D Hex20 at 2×2×2 Gauss points
