@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <span>
 
 #include "fem/forms/elastic_form.hpp"
 #include "fem/mesh/structured_mesh.hpp"
@@ -79,7 +80,8 @@ TEST_CASE("linear solver: an indefinite matrix shifted to K + sigma I, the small
 namespace {
 // A solid cylinder compressed axially to 40 % of its height: one step would invert elements.
 struct Compression {
-  Mesh mesh = rectangle_mesh(0.0, 1.0, 0.0, 1.0, 4, 4, 0.0);
+  static Mesh grid() { return rectangle_mesh(0.0, 1.0, 0.0, 1.0, 4, 4, 0.0); }
+  Mesh mesh = grid();
   std::unique_ptr<EnergyProblem> problem;
   explicit Compression(double final_height, std::shared_ptr<Form> extra = nullptr) {
     DirichletConstraints c;
@@ -116,6 +118,30 @@ class RoundoffFloor : public Form {
     return FormStatus::fine();
   }
 };
+
+/// One dof d on a double-well spring, energy k (s⁴/(4 s_w²) − s²/2) with s = x_d − x₀: a maximum at
+/// s = 0, where its curvature is −k, and minima at s = ±s_w. Stiffer than what holds d elastically,
+/// it makes the tangent indefinite while |s| < s_w/√3.
+class DoubleWellSpring : public Form {
+ public:
+  DoubleWellSpring(int dof, double x0, double stiffness, double s_w) : dof_(dof), x0_(x0), k_(stiffness), s_w_(s_w) {}
+  std::string name() const override { return "double-well spring"; }
+  void declare_pattern(SparsePattern& pattern) override { block_ = pattern.declare_block(std::span<const int>(&dof_, 1)); }
+  FormStatus add(const Vector& x, double* value, Vector* gradient, HessianAccumulator* hessian) const override {
+    const double s = x[dof_] - x0_, q = s * s / (s_w_ * s_w_);
+    if (value) *value += k_ * s * s * (q / 4 - 0.5);
+    if (gradient) (*gradient)[dof_] += k_ * s * (q - 1);
+    if (hessian) {
+      const double h = k_ * (3 * q - 1);
+      hessian->add_block(0, block_, &h);
+    }
+    return FormStatus::fine();
+  }
+
+ private:
+  int dof_, block_ = -1;
+  double x0_, k_, s_w_;
+};
 }  // namespace
 
 TEST_CASE("Newton stops at a round-off floor instead of iterating on it", "[solver]") {
@@ -145,6 +171,65 @@ TEST_CASE("Newton stops at a round-off floor instead of iterating on it", "[solv
   const double residual = c.problem->evaluate(x, true, false).gradient.norm() / scale;
   CHECK(residual > NewtonSettings{}.residual_tolerance);  // it did sit above the tolerance
   CHECK(residual < 100 * NewtonSettings{}.residual_tolerance);
+}
+
+namespace {
+// The cylinder compressed to 70 % in one Newton solve, from the affine squash (no bulge), with a
+// double-well spring on the axial dof of the node at (r, z) = (0.5, 0.5), whose maximum is the
+// mid-plane, z = 0.35 after the squash; the spring's dof starts s0 above it. At s0 = 0 the start and
+// the residual are symmetric about the mid-plane and Newton's steps leave the dof there, on the maximum.
+NewtonReport compress_with_double_well(double k, double s_w, double s0, double& s_end) {
+  const Mesh grid = Compression::grid();
+  int node = 0;
+  for (int n = 1; n < grid.num_nodes(); ++n)
+    if ((grid.X.row(n) - Eigen::RowVector2d(0.5, 0.5)).norm() < (grid.X.row(node) - Eigen::RowVector2d(0.5, 0.5)).norm())
+      node = n;
+  const int dof = 2 * node + 1;
+  Compression c(0.7, std::make_shared<DoubleWellSpring>(dof, 0.35, k, s_w));
+  Vector x = c.problem->reference_positions();
+  for (int n = 0; n < grid.num_nodes(); ++n) x[2 * n + 1] *= 0.7;
+  c.problem->apply_constraints(x, 1.0);
+  x[dof] += s0;
+  LinearSolver solver;
+  NewtonSettings newton;
+  newton.shift_indefinite_tangent = true;
+  newton.max_indefinite_iterations = 4;
+  const NewtonReport report = solve_newton(*c.problem, x, solver, newton);
+  s_end = x[dof] - 0.35;
+  return report;
+}
+
+int longest_indefinite_run(const NewtonReport& r) {
+  int longest = 0, run = 0;
+  for (const NewtonRow& row : r.rows) longest = std::max(longest, run = row.positive_definite ? 0 : run + 1);
+  return longest;
+}
+}  // namespace
+
+TEST_CASE("Newton goes on through indefinite tangents while it halves the residual but not onto a maximum",
+          "[solver]") {
+  // The unstable-branch guard (max_indefinite_iterations = 4) counts only indefinite iterations
+  // that fail to halve the best residual so far. Started on the spring's concave side
+  // (s0 = 0.3 s_w), six iterations in a row meet an indefinite tangent while the compression's
+  // residual halves; the old count, every indefinite iteration, gave up after five. Newton now
+  // reaches the well.
+  const double s_w = 1e-2;
+  double s_end = 0;
+  const NewtonReport well = compress_with_double_well(30, s_w, 0.3 * s_w, s_end);
+  CAPTURE(well.message, s_end / s_w);
+  REQUIRE(well.converged);
+  CHECK(longest_indefinite_run(well) > 5);
+  CHECK(well.tangent_positive_definite);
+  CHECK(s_end > s_w / std::sqrt(3.0));  // past the spring's inflection: a stable minimum
+  // Started on the maximum (s0 = 0, a symmetric start), a spring a little stiffer than what holds
+  // its dof elastically: the shifted steps leave the symmetric negative mode alone and converge,
+  // halving the residual, onto the maximum. That is an unstable equilibrium, reported as such.
+  const NewtonReport top = compress_with_double_well(20, s_w, 0.0, s_end);
+  CAPTURE(top.message, s_end / s_w);
+  CHECK_FALSE(top.converged);
+  CHECK(top.failure == Failure::unstable_branch);
+  CHECK(longest_indefinite_run(top) > 5);
+  CHECK(std::abs(s_end) < 1e-9 * s_w);
 }
 
 TEST_CASE("load stepper lands exactly on the requested levels", "[solver]") {

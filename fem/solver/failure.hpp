@@ -13,8 +13,9 @@ enum class Failure {
   max_iterations,        // Newton did not converge in the allowed iterations
   diverged,              // residual grew by orders of magnitude
   singular_tangent,      // neither Cholesky nor LU could factorise the tangent
-  unstable_branch,       // the tangent stayed indefinite for several iterations in a row: no stable
-                         // equilibrium near this load (past a limit point), so the step is hopeless
+  unstable_branch,       // the tangent stayed indefinite for several iterations that made no progress,
+                         // or Newton converged on an indefinite one: no stable equilibrium near this
+                         // load (past a limit point), so the step is hopeless
 };
 
 inline const char* to_string(Failure f) {
