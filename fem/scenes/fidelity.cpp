@@ -35,9 +35,10 @@ FidelityLadder rra_ladder() {
 // Hex20/P1 at 2×2×2 points, level 1: +3.1 % along the curve, 90° at 278.75 kPa (−3.0 %);
 // Hex27/P1 level 1: −2.1 % along the curve, 90° at 293.84 kPa (+2.3 %). Their times are the whole
 // curve to the limit point on this machine idle, both threads, this version (stiff parts rotated
-// exactly: README, "Cost of the curve"): 233 s and 391 s (one thread beside other jobs they took
-// 435 s and ~15 min); the level-2 reference was timed on one thread only, to 90°. Left off, dominated: Hex20/P1 level 1 with 27 points (−6.4 %, 90° at
-// 308.05 kPa, +7.2 %; 570 s). Richardson extrapolation of the two Hex20 levels (order 3.2 from the
+// exactly, the Newton guard of README "Cost of the curve"): 202 s and 391 s (one thread beside
+// other jobs they took 435 s and ~15 min); the level-2 reference was timed on one thread only, to
+// 90°. Left off, dominated: Hex20/P1 level 1 with 27 points (−6.4 %, 90° at 308.05 kPa, +7.2 %;
+// 570 s). Richardson extrapolation of the two Hex20 levels (order 3.2 from the
 // 32 mm cut) puts the converged 90° pressure near 284.8 kPa, 0.9 % below the reference.
 // The rod's 3.4 % at 90° on this design is two missing ~2x effects of the rings cancelling (README,
 // "Where the rod's error comes from"); on the main job's optimised designs it is 22–48 % off.
@@ -48,14 +49,15 @@ FidelityLadder tca_ladder() {
             "bending angle along the curve (worst point; 90° pressure: 3.4 %); on other designs up to 48 % (README)", 0.05,
             51},
            {"3D Hex20/P1 at 2x2x2 Gauss points, level 1", false, 1, 2, 3.1,
-            "bending along the curve (90° pressure: 3.0 %)", 233, 43992, true, true},
+            "bending along the curve (90° pressure: 3.0 %)", 202, 43992, true, true},
            {"3D Hex27/P1, level 1", false, 1, 2, 2.3, "90° pressure (bending along the curve: 2.1 %)", 391, 82350},
            {"3D Hex20/P1, level 2", false, 2, 2, 0, "reference", 6000, 318126, true}}};
 }
 
 // SPL: the only 3D pose this machine has run is Hex20 at 2x2x2 points, level 1, full model
-// (configs/convergence/spl_thesis_pose_hex20r.json: 256,164 dofs, 5.0 GB; 2,987 s idle on both threads
-// with the stiff parts rotated exactly, 7,078 s on one thread before; the Hex8 preview 48 s, 442 s).
+// (configs/convergence/spl_thesis_pose_hex20r.json: 256,164 dofs, 5.0 GB; 2,606 s idle on both threads
+// with the stiff parts rotated exactly and this Newton guard, 7,078 s on one thread before; the Hex8
+// preview 48 s, 442 s before).
 // It is one mesh, not a converged reference (level 2 would be ~2 M dofs; Hex27/P1 level 1 has
 // 493,566), and the errors below are against it. The spatial rod (1.0-1.1 s, bench_reduced_model;
 // 57 nodes x 4 unknowns) puts the tip 189 mm off, 40 % of the 3D tip's 470 mm travel, and the
@@ -69,7 +71,7 @@ FidelityLadder spl_ladder() {
           {{"reduced spatial rod, 17 nodes per segment", true, 0, 0, 40.0,
             "tip position: distance over the 3D tip's travel (joints 105 mm off on average)", 1.1, 228},
            {"3D Hex8/P0, level 1 (preview: locks in bending)", false, 1, 1, 68, "3CA bending at 344.7 kPa", 48, 66132},
-           {"3D Hex20/P1 at 2x2x2 Gauss points, level 1", false, 1, 2, 0, "reference", 2987, 256164, true, true}}};
+           {"3D Hex20/P1 at 2x2x2 Gauss points, level 1", false, 1, 2, 0, "reference", 2606, 256164, true, true}}};
 }
 
 }  // namespace
