@@ -46,9 +46,9 @@ struct NewtonSettings {
   // ones that makes no progress means the iterates are on no stable branch, as past a limit
   // point, where the step would otherwise spend all max_iterations (the thesis 3CA near its
   // 316 kPa maximum: 4 failed steps × 2 attempts × 20 iterations, three quarters of the run).
-  // Shifted steps that still halve the best residual are converging and go on (the SPL pose
-  // past half its pressures: 2.5e-2, 3.1e-4, 1.2e-4, 4.9e-5 on indefinite tangents used to be
-  // given up). With the guard on, an equilibrium reached on an indefinite tangent (a maximum:
+  // Shifted steps that still halve the best residual go on (the thesis 3CA's step to 241 kPa,
+  // given up at 4.3e-4, now converges; on the SPL pose past half its pressures such tries slow
+  // down short of convergence and are given up a few iterations later). With the guard on, an equilibrium reached on an indefinite tangent (a maximum:
   // shifted steps leave alone a negative mode that the residual has no part in) is
   // unstable_branch too. The 3D scenes use 4.
   int max_indefinite_iterations = 0;
