@@ -95,6 +95,10 @@ struct Compression {
   }
 };
 
+PathCallbacks no_callbacks() {
+  return {[](double) {}, [](double, const Vector&, bool, const NewtonReport&) {}};
+}
+
 /// A round-off floor: a gradient term of fixed size whose direction is a hash of x's bits, so
 /// that no Newton step removes it (as the rounding of large cancelling ABS forces), with no
 /// energy and no Hessian.
@@ -153,7 +157,7 @@ TEST_CASE("Newton stops at a round-off floor instead of iterating on it", "[solv
   Compression c(0.7, floor);
   Vector x = c.problem->reference_positions();
   LinearSolver solver;
-  const PathCallbacks none{[](double) {}, [](double, const Vector&, bool, const NewtonReport&) {}};
+  const PathCallbacks none = no_callbacks();
   REQUIRE(follow_load_path(*c.problem, x, solver, {1.0}, none, NewtonSettings{}, StepSettings{}).completed);  // no floor yet
   const Evaluation e = c.problem->evaluate(x, true, false);
   const double scale = e.force_scale();
@@ -181,9 +185,7 @@ namespace {
 NewtonReport compress_with_double_well(double k, double s_w, double s0, double& s_end) {
   const Mesh grid = Compression::grid();
   int node = 0;
-  for (int n = 1; n < grid.num_nodes(); ++n)
-    if ((grid.X.row(n) - Eigen::RowVector2d(0.5, 0.5)).norm() < (grid.X.row(node) - Eigen::RowVector2d(0.5, 0.5)).norm())
-      node = n;
+  (grid.X.rowwise() - Eigen::RowVector2d(0.5, 0.5)).rowwise().norm().minCoeff(&node);
   const int dof = 2 * node + 1;
   Compression c(0.7, std::make_shared<DoubleWellSpring>(dof, 0.35, k, s_w));
   Vector x = c.problem->reference_positions();
@@ -473,7 +475,7 @@ TEST_CASE("a plain first step that fails on indefinite tangents does not make th
   newton.max_indefinite_iterations = 1;
   StepSettings steps;
   steps.initial_increment = 1.0;
-  const PathCallbacks none{[](double) {}, [](double, const Vector&, bool, const NewtonReport&) {}};
+  const PathCallbacks none = no_callbacks();
   const auto r = follow_load_path(*c.problem, x, solver, {1.0}, none, newton, steps);
   CAPTURE(r.stats.failed_levels, r.stats.halved_steps, r.stats.steps, r.message);
   REQUIRE(!r.stats.failed_levels.empty());

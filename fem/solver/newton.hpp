@@ -48,9 +48,9 @@ struct NewtonSettings {
   // 316 kPa maximum: 4 failed steps × 2 attempts × 20 iterations, three quarters of the run).
   // Shifted steps that still halve the best residual go on (the thesis 3CA's step to 241 kPa,
   // given up at 4.3e-4, now converges; on the SPL pose past half its pressures such tries slow
-  // down short of convergence and are given up a few iterations later). With the guard on, an equilibrium reached on an indefinite tangent (a maximum:
-  // shifted steps leave alone a negative mode that the residual has no part in) is
-  // unstable_branch too. The 3D scenes use 4.
+  // down short of convergence and are given up a few iterations later). With the guard on, an
+  // equilibrium reached on an indefinite tangent (a maximum: shifted steps leave alone a negative
+  // mode that the residual has no part in) is unstable_branch too. The 3D scenes use 4.
   int max_indefinite_iterations = 0;
   // Stiff parts (the ABS rings and connectors) rotate exactly under the update instead of
   // being stretched by its linearisation (fem/assembly/stiff_inclusions.hpp). Newton itself
