@@ -13,7 +13,9 @@ nlohmann::json path_solver_json(const fem::PressurePathResult& path) {
           {"cg_iterations", path.cg_iterations},
           {"analyse_s", path.analyse_s},
           {"factorize_s", path.factorize_s},
-          {"solve_s", path.solve_s}};
+          {"solve_s", path.solve_s},
+          {"factor_gflop", 1e-9 * path.factor_flops},
+          {"factor_nonzeros_million", 1e-6 * path.factor_nonzeros}};
 }
 
 }  // namespace softarm::engine

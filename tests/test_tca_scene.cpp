@@ -139,6 +139,10 @@ TEST_CASE("3CA: two runs take the same path (factor reuse's CG budget counts flo
   REQUIRE(a.path.reused_solves > 0);  // the budget was used
   CHECK(a.path.path.stats.newton_iterations == b.path.path.stats.newton_iterations);
   CHECK(a.path.factorizations == b.path.factorizations);
+  // The cost of one factorisation, as summary.json reports it: L holds at least the diagonal,
+  // and each column of L costs at least as many flops as it has entries.
+  CHECK(a.path.factor_nonzeros >= a.dofs);
+  CHECK(a.path.factor_flops >= a.path.factor_nonzeros);
   CHECK(a.path.cg_iterations == b.path.cg_iterations);
   CHECK(a.curve.back().bending_angle_deg == b.curve.back().bending_angle_deg);
 }

@@ -157,6 +157,8 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
     out.shifted_factorizations = solver.shifted_factorizations;
     out.reused_solves = solver.reused_solves;
     out.cg_iterations = solver.cg_iterations;
+    out.factor_flops = solver.factor_flops;
+    out.factor_nonzeros = solver.factor_nonzeros;
   };
   take_solver_costs();
   out.reached_pressure_kPa = out.history.back().pressure_kPa;
