@@ -77,7 +77,7 @@ TEST_CASE("a scene's fidelity request picks the cheapest level that meets it", "
   CHECK(read_scene_config(tca).reduced);
 
   // "fast" is the cheapest model whatever its error, and says so: the SPL's spatial rod is 40 % off
-  // its 3D pose, and the next rung is a 2-hour 3D run.
+  // its 3D pose, and every 3D rung but a locking preview takes 17 to 41 minutes.
   json spl = thesis_scene("spl_thesis_pose.json");
   spl.erase("mesh");
   spl["model"] = {{"fidelity", "fast"}};
