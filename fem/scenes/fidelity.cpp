@@ -65,8 +65,9 @@ FidelityLadder tca_ladder() {
 // its tip 12.0 mm from the reference's (2.6 % of the 470 mm travel; 14.9 mm at 0.6 of the pressures),
 // the joints 6.0 mm apart on average. On the 3CA the two rules bracket level 2 (README).
 // The spatial rod (1.0-1.1 s, bench_reduced_model; 57 nodes x 4 unknowns) puts the tip 189 mm off,
-// 40 % of the 3D tip's 470 mm travel, and the joints 105 mm off on average (README, "Results: the thesis 3CA and SPL"); in one plane it poses
-// the thesis 3CA within 0.3 % of the planar rod (test_spatial_rod). Hex8 is a qualitative preview
+// 40 % of the 3D tip's 470 mm travel, and the joints 105 mm off on average (README, "Results: the
+// thesis 3CA and SPL"); in one plane it poses the thesis 3CA within 0.3 % of the planar rod
+// (test_spatial_rod). Hex8 is a qualitative preview
 // (it locks in bending: the 3CA reaches 34° instead of 107° at 344.7 kPa, −68 %).
 FidelityLadder spl_ladder() {
   return {"spl",
@@ -76,7 +77,8 @@ FidelityLadder spl_ladder() {
             "tip position: distance over the 3D tip's travel (joints 105 mm off on average)", 1.1, 228},
            {"3D Hex8/P0, level 1 (preview: locks in bending)", false, 1, 1, 68, "3CA bending at 344.7 kPa", 48, 66132},
            {"3D Hex20/P1, level 1", false, 1, 2, 2.6,
-            "tip position: distance over the reference tip's travel (joints 6.0 mm off on average)", 1036, 256164, true},
+            "tip position: distance over the reference tip's travel (joints 6.0 mm off on average)", 1036, 256164,
+            true},
            {"3D Hex20/P1 at 2x2x2 Gauss points, level 1", false, 1, 2, 0, "reference", 2474, 256164, true, true}}};
 }
 
