@@ -5,8 +5,9 @@
 // peak memory, the pressure reaching the target bending angle and the bending
 // angle and tip position at the peak pressure.
 //
-// Usage: bench_tca_levels [config] [--runs 1:2,2:1,20:1 (element:level; element 1 = Hex8,
-//        2 = Hex27, 20 = Hex20)] [--repeat N] [--threads T]
+// Usage: bench_tca_levels [config] [--runs 1:2,2:1,20:1,20r:1/2 (element:level[/axial level];
+//        element 1 = Hex8, 2 = Hex27, 20 = Hex20, 20r = Hex20 at 2×2×2 points; the axial level,
+//        mesh.axial_level, refines along the axis alone)] [--repeat N] [--threads T]
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -30,10 +31,12 @@ double peak_memory_MiB() {
   return u.ru_maxrss / 1024.0;
 }
 
-void run_one(fem::TcaSceneSpec spec, int element, int level, int repeat) {
+void run_one(fem::TcaSceneSpec spec, int element, bool reduced, int level, int axial_level, int repeat) {
   spec.element_order = element == 1 ? 1 : 2;
   spec.serendipity = element == 20;
+  spec.integration = reduced ? fem::ElementIntegration::reduced : fem::ElementIntegration::full;
   spec.mesh_level = level;
+  spec.axial_level = axial_level;
   std::vector<double> totals;
   fem::TcaResult r;
   for (int k = 0; k < repeat; ++k) {
@@ -42,8 +45,9 @@ void run_one(fem::TcaSceneSpec spec, int element, int level, int repeat) {
   }
   std::sort(totals.begin(), totals.end());
   const auto& last = r.curve.back();
-  std::printf("%5s %5d %-5s %8d %5d %6d %6d %9.2f %9.2f %9.2f %8.0f %10s %9.3f %9.2f %8.2f %8.2f  %s\n",
-              element == 1 ? "Hex8" : element == 20 ? "Hex20" : "Hex27", level, r.model.half ? "half" : "full", r.dofs, r.path.path.stats.steps,
+  std::printf("%6s %5d %5d %-5s %8d %5d %6d %6d %9.2f %9.2f %9.2f %8.0f %10s %9.3f %9.2f %8.2f %8.2f  %s\n",
+              element == 1 ? "Hex8" : element == 2 ? "Hex27" : reduced ? "Hex20R" : "Hex20", level,
+              axial_level > 0 ? axial_level : level, r.model.half ? "half" : "full", r.dofs, r.path.path.stats.steps,
               r.path.path.stats.newton_iterations, r.path.factorizations, r.timings.assembly_s, r.timings.factorize_s,
               totals[totals.size() / 2], peak_memory_MiB(),
               r.target_pressure_kPa ? std::to_string(*r.target_pressure_kPa).substr(0, 7).c_str() : "-",
@@ -69,16 +73,23 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::printf("%s, threads %d, time = median of %d\n", config.c_str(), fem::thread_count(), repeat);
-  std::printf("%5s %5s %-5s %8s %5s %6s %6s %9s %9s %9s %8s %10s %9s %9s %8s %8s  %s\n", "elem", "level", "model",
+  std::printf("%6s %5s %5s %-5s %8s %5s %6s %6s %9s %9s %9s %8s %10s %9s %9s %8s %8s  %s\n", "elem", "level", "axial", "model",
               "dofs", "steps", "newton", "factor", "assemb_s", "factor_s", "total_s", "peak_MiB", "p_target",
               "angle_deg", "at_kPa", "tip_x", "tip_z", "outcome");
   std::stringstream list(runs);
   std::string item;
   while (std::getline(list, item, ',')) {
     const int element = std::atoi(item.c_str()), level = std::atoi(item.c_str() + item.find(':') + 1);
+    const bool reduced = item.find('r') != std::string::npos && item.find('r') < item.find(':');
+    const auto slash = item.find('/');
+    const int axial_level = slash == std::string::npos ? 0 : std::atoi(item.c_str() + slash + 1);
+    if ((element != 1 && element != 2 && element != 20) || (reduced && element != 20)) {
+      std::fprintf(stderr, "bench_tca_levels: run '%s': element must be 1, 2, 20 or 20r\n", item.c_str());
+      return 2;
+    }
     const pid_t child = fork();
     if (child == 0) {
-      run_one(scene.tca, element, level, repeat);
+      run_one(scene.tca, element, reduced, level, axial_level, repeat);
       std::_Exit(0);
     }
     int status = 0;

@@ -112,6 +112,8 @@ TEST_CASE("softarm rejects bad 3CA and SPL input with the field named", "[cli]")
   expect_input_error(tca_reduced_hex27.substr(0, tca_reduced_hex27.size() - 1) +
                          R"(, "mesh": {"element_order": 2, "reduced_integration": true}})",
                      "mesh.reduced_integration");
+  expect_input_error(tca_reduced_hex27.substr(0, tca_reduced_hex27.size() - 1) + R"(, "mesh": {"axial_level": 5}})",
+                     "mesh.axial_level");
   expect_input_error(R"({"scene": "spl", "geometry": {)" + sizes + R"(, "bottom_radius_mm": 9}, "load": {"chamber_pressures_kPa": [0, 1, 1, 0, 0, 0, 0, 0, 0]}})",
                      "bottom_radius_mm");
   expect_input_error(R"({"scene": "spl", "geometry": {)" + sizes + R"(}, "load": {"chamber_pressures_kPa": [1, 2, 3]}})",

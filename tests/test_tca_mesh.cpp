@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numeric>
+#include <set>
 
 #include "fem/elements/reference_quadrature.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
@@ -118,4 +119,32 @@ TEST_CASE("3CA serendipity mesh: the Hex27 mesh without face and body centres", 
   const Mesh half = mesh_tca(d, options);
   CHECK(chamber_volume(half, 0) == Approx(chamber_volume(hex20, 0) / 2).epsilon(1e-9));
   CHECK(chamber_volume(half, 1) == Approx(chamber_volume(hex20, 1)).epsilon(1e-9));
+}
+
+TEST_CASE("3CA mesh refined along the axis alone: twice the layers, the same cross-section and volumes",
+          "[tca_mesh]") {
+  // mesh.axial_level splits every element layer and nothing else: the body and its
+  // chambers are unchanged (every layer boundary is kept and the axial node positions
+  // are exact), each cross-section keeps its node count, and a level given twice
+  // over (axial_level = level) is the uniform mesh.
+  TcaDesign d;
+  SolidMeshOptions options{1, 2, false, 0};
+  const Mesh uniform = mesh_tca(d, options);
+  options.axial_level = 1;
+  CHECK(mesh_tca(d, options).num_nodes() == uniform.num_nodes());
+  options.axial_level = 2;
+  const Mesh axial = mesh_tca(d, options);
+  CHECK(axial.num_elements() == 2 * uniform.num_elements());
+  const auto bottom = [](const Mesh& m) { return m.node_sets.at("bottom").size(); };
+  CHECK(bottom(axial) == bottom(uniform));
+  // Hex27: a mesh of n layers has 2n + 1 node planes z = const, so doubling n adds 2n of them.
+  const auto planes = [](const Mesh& m) {
+    std::set<long long> z;
+    for (int n = 0; n < m.num_nodes(); ++n) z.insert(std::llround(m.X(n, 2) * 1e6));
+    return z.size();
+  };
+  CHECK(planes(axial) == 2 * planes(uniform) - 1);
+  const auto v1 = part_volumes_mm3(uniform), v2 = part_volumes_mm3(axial);
+  for (std::size_t p = 0; p < v1.size(); ++p) CHECK(v2[p] == Approx(v1[p]).epsilon(1e-9));
+  for (int c = 0; c < 3; ++c) CHECK(chamber_volume(axial, c) == Approx(chamber_volume(uniform, c)).epsilon(1e-9));
 }

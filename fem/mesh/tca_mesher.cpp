@@ -102,7 +102,8 @@ constexpr double kMaxConnectorLayer = 20.0;  // mm per element layer in a (stiff
 /// every interface conforms; a connector at an end of the stack copies its one neighbour.
 Mesh mesh_stack(const std::vector<StackPiece>& pieces, int actuators, int chamber_count, const SolidMeshOptions& options,
                 const std::vector<std::string>& chamber_names) {
-  if (options.level < 1) throw std::logic_error("mesh level must be >= 1");
+  if (options.level < 1 || options.axial_level < 0) throw std::logic_error("mesh level must be >= 1");
+  const int axial_level = options.axial_level > 0 ? options.axial_level : options.level;
   const double angle = options.first_axis_angle_rad;
   // Section sizes at the bottom and top of every piece.
   std::vector<SectionGeometry> bottom(pieces.size()), top(pieces.size());
@@ -139,14 +140,14 @@ Mesh mesh_stack(const std::vector<StackPiece>& pieces, int actuators, int chambe
     const auto& p = pieces[i];
     if (!p.segment) {
       const int n = std::max(1, static_cast<int>(std::ceil((p.z1 - p.z0) / kMaxConnectorLayer - 1e-9)));
-      layers.push_back({p.z0, p.z1, options.level * n});
+      layers.push_back({p.z0, p.z1, axial_level * n});
       kinds.push_back({{}, static_cast<int>(i)});
       continue;
     }
     std::vector<ExtrusionLayer> bands;
     std::vector<BandKind> band_kinds;
     const RraDesign& rra = p.segment->actuator;
-    actuator_bands(rra, rra.ring_count > 0 ? square_ring_side_mm(rra) : 0.0, options.level, bands, band_kinds);
+    actuator_bands(rra, rra.ring_count > 0 ? square_ring_side_mm(rra) : 0.0, axial_level, bands, band_kinds);
     for (std::size_t b = 0; b < bands.size(); ++b) {
       layers.push_back({bands[b].z0 + p.z0, bands[b].z1 + p.z0, bands[b].divisions});
       kinds.push_back({band_kinds[b], static_cast<int>(i)});

@@ -8,7 +8,8 @@
 // Levels refine uniformly: level L has 8L rays around each chamber, L elements
 // across each radial band (chamber, wall, inner and outer half of the ring band,
 // core) and L elements through each axial band (cap, ring, gap; bands longer than
-// 4 mm get more).
+// 4 mm get more). `axial_level` refines along the axis alone, so a convergence study
+// can take one direction at a time where a uniform level 2 would not fit in memory.
 #include "fem/mesh/mesh.hpp"
 #include "fem/mesh/rra_design.hpp"
 #include "fem/mesh/spl_design.hpp"
@@ -22,6 +23,7 @@ struct SolidMeshOptions {
   bool half = false;                 // keep y ≥ 0: a half model on the symmetry plane y = 0
   double first_axis_angle_rad = 0;   // 3CA: angle of chamber 1's axis about the 3CA axis
   bool serendipity = false;          // order 2: drop face and body centres (serendipity_mesh.hpp)
+  int axial_level = 0;               // element layers per axial band as at this level; 0: `level`
 };
 
 /// A 3CA along z ∈ [0, l]: parts "tube", "rings", "sheath"; chambers 1–3, chamber k

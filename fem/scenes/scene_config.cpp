@@ -136,10 +136,16 @@ ModelRequest read_model(JsonReader& root, bool three_dimensional) {
 }
 
 /// The mesh and model objects of a 3D scene (levels up to `max_level` fit this machine).
-void read_3d_discretisation(JsonReader& root, int& level, int& order, bool& serendipity, ElementIntegration& integration,
-                            bool& allow_symmetry, ModelRequest& request, int max_level, const std::string& order_doc) {
+void read_3d_discretisation(JsonReader& root, int& level, int& axial_level, int& order, bool& serendipity,
+                            ElementIntegration& integration, bool& allow_symmetry, ModelRequest& request, int max_level,
+                            const std::string& order_doc) {
   auto mesh = root.object("mesh", "discretisation");
   read_mesh(mesh, level, order, max_level, order_doc);
+  axial_level = mesh.optional_integer("axial_level", Range::closed(1, 4),
+                                      "element layers along the axis as at this level (absent: mesh.level): refines "
+                                      "one direction at a time, for convergence studies where a uniform level would "
+                                      "not fit in memory")
+                    .value_or(0);
   serendipity = mesh.boolean("serendipity", serendipity,
                              "with element_order 2: 20-node serendipity hexahedra (Hex20/P1, the C3D20 of CalculiX) "
                              "instead of Hex27: about 45 % fewer unknowns on the same mesh");
@@ -209,8 +215,8 @@ TcaSceneSpec read_tca(JsonReader& root, ModelRequest& model_request) {
   read_actuator_materials(materials, spec.tube_material, spec.ring_material, spec.sheath_material);
   materials.finish();
 
-  read_3d_discretisation(root, spec.mesh_level, spec.element_order, spec.serendipity, spec.integration,
-                         spec.allow_symmetry, model_request, 3,
+  read_3d_discretisation(root, spec.mesh_level, spec.axial_level, spec.element_order, spec.serendipity,
+                         spec.integration, spec.allow_symmetry, model_request, 3,
                          "1: trilinear Hex8/P0 (mean dilatation; locks in bending at coarse levels); 2: triquadratic Hex27/P1");
 
   auto load = root.object("load", "loading");
@@ -249,8 +255,8 @@ SplSceneSpec read_spl(JsonReader& root, ModelRequest& model_request) {
   spec.connector_material = read_material(materials, "connector", "digital_abs");
   materials.finish();
 
-  read_3d_discretisation(root, spec.mesh_level, spec.element_order, spec.serendipity, spec.integration,
-                         spec.allow_symmetry, model_request, 2,
+  read_3d_discretisation(root, spec.mesh_level, spec.axial_level, spec.element_order, spec.serendipity,
+                         spec.integration, spec.allow_symmetry, model_request, 2,
                          "1: trilinear Hex8/P0 (a quick preview: locks in bending); 2: triquadratic Hex27/P1");
 
   auto load = root.object("load", "loading");
@@ -285,9 +291,9 @@ SceneConfig read_scene_config(const nlohmann::json& document) {
   if (request.target_error_percent) {
     // The ladder sets the mesh: a level given by hand as well would be ambiguous.
     const nlohmann::json& mesh = document.contains("mesh") ? document["mesh"] : nlohmann::json::object();
-    for (const char* key : {"level", "element_order", "serendipity", "reduced_integration"})
+    for (const char* key : {"level", "axial_level", "element_order", "serendipity", "reduced_integration"})
       if (mesh.contains(key))
-        throw InputError("model.fidelity", "the fidelity ladder picks mesh.level, mesh.element_order, "
+        throw InputError("model.fidelity", "the fidelity ladder picks mesh.level, mesh.axial_level, mesh.element_order, "
                                            "mesh.serendipity and mesh.reduced_integration: give either those "
                                            "or model.fidelity / model.target_error_percent");
     apply_fidelity(config, *request.target_error_percent, request.asked);

@@ -38,6 +38,7 @@ SplResult run_spl_scene(const SplSceneSpec& spec, const std::function<void(const
   const double theta = out.model.frame_angle_rad;
   SolidMeshOptions options;
   options.level = spec.mesh_level;
+  options.axial_level = spec.axial_level;
   options.order = spec.element_order;
   options.serendipity = spec.serendipity;
   options.half = out.model.half;

@@ -48,6 +48,7 @@ Mesh tca_mesh(const TcaSceneSpec& spec, const ModelChoice& model) {
   validate(spec.design);
   SolidMeshOptions options;
   options.level = spec.mesh_level;
+  options.axial_level = spec.axial_level;
   options.order = spec.element_order;
   options.serendipity = spec.serendipity;
   options.half = model.half;

@@ -38,6 +38,7 @@ struct TcaSceneSpec {
   TcaDesign design;
   Material tube_material, ring_material, sheath_material;
   int mesh_level = 1;
+  int axial_level = 0;                                    // element layers along the axis as at this level; 0: mesh_level
   int element_order = 2;                                   // 1: Hex8/P0, 2: Hex27/P1 or Hex20/P1
   bool serendipity = false;                                // order 2: Hex20 instead of Hex27
   ElementIntegration integration = ElementIntegration::full;  // reduced: Hex20 at 2×2×2 points (C3D20R)
