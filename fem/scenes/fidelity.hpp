@@ -29,6 +29,7 @@ struct ModelLevel {
   int dofs = 0;
   bool serendipity = false;       // 3D: Hex20 instead of Hex27 (element_order 2)
   bool reduced_integration = false;  // 3D Hex20 at 2×2×2 Gauss points
+  int axial_level = 0;            // 3D: element layers along the axis as at this level (mesh.axial_level); 0: mesh_level
 };
 
 struct FidelityLadder {

@@ -313,6 +313,7 @@ void apply_fidelity(SceneConfig& config, double target_error_percent, const std:
   config.reduced = config.selection->level.reduced;
   if (!config.reduced) {
     config.mesh_level() = config.selection->level.mesh_level;
+    config.tca.axial_level = config.spl.axial_level = config.selection->level.axial_level;
     config.element_order() = config.selection->level.element_order;
     config.tca.serendipity = config.spl.serendipity = config.selection->level.serendipity;
     config.tca.integration = config.spl.integration =
