@@ -56,11 +56,16 @@ TEST_CASE("a scene's fidelity request picks the cheapest level that meets it", "
   tca.erase("mesh");
   tca["model"] = {{"symmetry", "auto"}, {"fidelity", "balanced"}};
   c = read_scene_config(tca);
-  CHECK_FALSE(c.reduced);  // 2 %: only the reference, Hex20 level 2, is measured within it
+  CHECK_FALSE(c.reduced);  // 2 %: Hex20 with level 1's section and level 2's layers, 0.9 %
   CHECK(c.tca.element_order == 2);
-  CHECK(c.tca.mesh_level == 2);
+  CHECK(c.tca.mesh_level == 1);
+  CHECK(c.tca.axial_level == 2);
   CHECK(c.tca.serendipity);
   CHECK(c.tca.integration == ElementIntegration::full);
+  tca["model"] = {{"symmetry", "auto"}, {"fidelity", "accurate"}};
+  c = read_scene_config(tca);
+  CHECK(c.tca.mesh_level == 2);  // 0.5 %: only the reference, Hex20 level 2
+  CHECK(c.tca.axial_level == 0);
   tca["model"] = {{"target_error_percent", 5.0}};
   c = read_scene_config(tca);
   CHECK_FALSE(c.reduced);
