@@ -142,9 +142,10 @@ void read_3d_discretisation(JsonReader& root, int& level, int& axial_level, int&
   auto mesh = root.object("mesh", "discretisation");
   read_mesh(mesh, level, order, max_level, order_doc);
   axial_level = mesh.optional_integer("axial_level", Range::closed(1, 4),
-                                      "element layers along the axis as at this level (absent: mesh.level): refines "
-                                      "one direction at a time, for convergence studies where a uniform level would "
-                                      "not fit in memory")
+                                      "element layers along the axis as at this level (absent: mesh.level), the "
+                                      "cross-section as at mesh.level: the thesis 3CA's level-1 error lies along its "
+                                      "axis, and level 1 with axial_level 2 is within 0.9 % of level 2 at a quarter "
+                                      "of its unknowns (README, One direction at a time)")
                     .value_or(0);
   serendipity = mesh.boolean("serendipity", serendipity,
                              "with element_order 2: 20-node serendipity hexahedra (Hex20/P1, the C3D20 of CalculiX) "
