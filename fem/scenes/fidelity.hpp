@@ -41,7 +41,7 @@ const FidelityLadder& fidelity_ladder(const std::string& scene);
 
 /// The "target" of fidelity "fast": the cheapest model of the ladder, whatever its measured error
 /// (which is printed with it). A percentage would pick a slow model where the reduced one misses it:
-/// the SPL's spatial rod is 40 % off, and every 3D rung but a locking preview takes 17 to 41 minutes.
+/// the SPL's spatial rod is 43 % off, and every 3D rung but a locking preview takes 17 to 47 minutes.
 inline constexpr double kCheapestModel = std::numeric_limits<double>::infinity();
 
 /// Target error of a named fidelity: fast kCheapestModel, balanced 2 %, accurate 0.5 %.
