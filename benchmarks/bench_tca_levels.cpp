@@ -87,6 +87,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "bench_tca_levels: run '%s': element must be 1, 2, 20 or 20r\n", item.c_str());
       return 2;
     }
+    std::fflush(stdout);  // else the child inherits, and prints again, what the parent has buffered
     const pid_t child = fork();
     if (child == 0) {
       run_one(scene.tca, element, reduced, level, axial_level, repeat);

@@ -39,7 +39,10 @@ FidelityLadder rra_ladder() {
 // other jobs they took 435 s and ~15 min); the level-2 reference was timed on one thread only, to
 // 90°. Left off, dominated: Hex20/P1 level 1 with 27 points (−6.4 %, 90° at 308.05 kPa, +7.2 %;
 // 570 s). Richardson extrapolation of the two Hex20 levels (order 3.2 from the
-// 32 mm cut) puts the converged 90° pressure near 284.8 kPa, 0.9 % below the reference.
+// 32 mm cut) puts the converged 90° pressure near 284.8 kPa, 0.9 % below the reference; but on the
+// 32 mm cut the element layers alone converge at order ~0.9 (a ring corner's singularity), so level 2
+// is probably ~4-5 % short in bending and these errors are distances from level 2, not from the
+// converged answer (README, "Layers beyond level 2").
 // Hex20/P1 (27 points) with level 1's cross-section and level 2's element layers (mesh.axial_level 2,
 // the configs' default; its level-1 error lies along the axis, README "One direction at a time"):
 // 90° at 287.41 kPa (+0.04 %), bending along the curve within 0.9 % (−0.9 % at 60 kPa, −0.2 % at
@@ -48,7 +51,7 @@ FidelityLadder rra_ladder() {
 // "Where the rod's error comes from"); on the main job's optimised designs it is 22–48 % off.
 FidelityLadder tca_ladder() {
   return {"tca",
-          "3D Hex20/P1 level 2, half model (318,126 dofs): 90° at 287.3 kPa",
+          "3D Hex20/P1 level 2, half model (318,126 dofs; not converged along the axis): 90° at 287.3 kPa",
           {{"reduced rod, 17 nodes", true, 0, 0, 21.0,
             "bending angle along the curve (worst point; 90° pressure: 3.4 %); on other designs up to 48 % (README)", 0.05,
             51},
@@ -65,8 +68,9 @@ FidelityLadder tca_ladder() {
 // factorisation; 2,845 s of running on both threads, its first ~20 min beside a 3CA run; 14 load
 // steps, 91 Newton iterations). Level 2 (~2 M dofs) does not fit this machine; on the thesis 3CA the
 // 3CA's level-1 error lies along its axis and this mesh is within 0.9 % of level 2 (README, "One
-// direction at a time"), so this is the best SPL reference this machine can compute, not a proven
-// converged one. Errors: the tip's distance from the reference's over the reference tip's 478 mm
+// direction at a time"), so this is the best SPL reference this machine has computed, not a converged
+// one: along the axis the layers converge at order ~0.9, and Richardson with that order moves its tip
+// a further ~31 mm (README), so the errors below are lower bounds. Errors: the tip's distance from the reference's over the reference tip's 478 mm
 // travel (README, "The 3CA and SPL scenes"):
 // - Hex20/P1 level 1 at 27 points (the config's default, 1,036 s): 26.1 mm, 5.5 %; joints 13.8 mm
 //   off on average (2.1 and 6.9 mm at the tip at 0.4 and 0.6 of the pressures).
