@@ -70,10 +70,10 @@ FidelityLadder tca_ladder() {
 // 3CA's level-1 error lies along its axis and this mesh is within 0.9 % of level 2 (README, "One
 // direction at a time"), so this is the best SPL reference this machine has computed, not a converged
 // one: along the axis the layers converge at order ~0.9, and Richardson with that order moves its tip
-// a further ~31 mm (README), so the errors below are lower bounds. Errors: the tip's distance from the reference's over the reference tip's 478 mm
-// travel (README, "The 3CA and SPL scenes"):
+// a further ~31 mm (README), so the errors below are lower bounds. Errors: the tip's distance from
+// the reference's over the reference tip's 478 mm travel (README, "The 3CA and SPL scenes"):
 // - Hex20/P1 level 1 at 27 points (the config's default, 1,036 s): 26.1 mm, 5.5 %; joints 13.8 mm
-//   off on average (2.1 and 6.9 mm at the tip at 0.4 and 0.6 of the pressures).
+//   off on average (2.1 and 7.0 mm at the tip at 0.4 and 0.6 of the pressures).
 // - Hex20 at 2x2x2 points, level 1 (configs/convergence/spl_thesis_pose_hex20r.json, 2,474 s): 20.2 mm,
 //   4.2 %; joints 13.2 mm off on average.
 // - The spatial rod (1.0-1.1 s, bench_reduced_model; 57 nodes x 4 unknowns): 206 mm, 43 %; joints
