@@ -21,6 +21,7 @@
 
 #include "fem/scenes/scene_config.hpp"
 #include "fem/core/parallel.hpp"
+#include "fem/mesh/tca_mesher.hpp"
 
 using namespace softarm;
 
@@ -47,7 +48,7 @@ void run_one(fem::TcaSceneSpec spec, int element, bool reduced, int level, int a
   const auto& last = r.curve.back();
   std::printf("%6s %5d %5d %-5s %8d %5d %6d %6d %9.2f %9.2f %9.2f %8.0f %10s %9.3f %9.2f %8.2f %8.2f  %s\n",
               element == 1 ? "Hex8" : element == 2 ? "Hex27" : reduced ? "Hex20R" : "Hex20", level,
-              axial_level > 0 ? axial_level : level, r.model.half ? "half" : "full", r.dofs, r.path.path.stats.steps,
+              fem::layers_level(level, axial_level), r.model.half ? "half" : "full", r.dofs, r.path.path.stats.steps,
               r.path.path.stats.newton_iterations, r.path.factorizations, r.timings.assembly_s, r.timings.factorize_s,
               totals[totals.size() / 2], peak_memory_MiB(),
               r.target_pressure_kPa ? std::to_string(*r.target_pressure_kPa).substr(0, 7).c_str() : "-",

@@ -6,6 +6,7 @@
 #include "engine/output_files.hpp"
 #include "engine/path_summary.hpp"
 #include "fem/io/vtu_writer.hpp"
+#include "fem/mesh/tca_mesher.hpp"
 
 namespace softarm::engine {
 namespace {
@@ -93,7 +94,7 @@ nlohmann::json write_tca_summary(const fem::SceneConfig& config, const fem::TcaR
       {"materials", {{"tube", spec.tube_material.name}, {"rings", spec.ring_material.name},
                      {"sheath", spec.sheath_material.name}}},
       {"load", {{"chamber_pressures_kPa", spec.chamber_pressure_kPa}, {"gravity_m_s2", vector_json(spec.gravity_m_s2)}}},
-      {"mesh", {{"level", spec.mesh_level}, {"axial_level", spec.axial_level > 0 ? spec.axial_level : spec.mesh_level},
+      {"mesh", {{"level", spec.mesh_level}, {"axial_level", fem::layers_level(spec.mesh_level, spec.axial_level)},
                 {"element_order", spec.element_order}, {"elements", r.mesh.num_elements()},
                 {"nodes", r.mesh.num_nodes()}, {"dofs", r.dofs}}},
       {"outcome", fem::to_string(r.path.outcome)},

@@ -103,7 +103,7 @@ constexpr double kMaxConnectorLayer = 20.0;  // mm per element layer in a (stiff
 Mesh mesh_stack(const std::vector<StackPiece>& pieces, int actuators, int chamber_count, const SolidMeshOptions& options,
                 const std::vector<std::string>& chamber_names) {
   if (options.level < 1 || options.axial_level < 0) throw std::logic_error("mesh level must be >= 1");
-  const int axial_level = options.axial_level > 0 ? options.axial_level : options.level;
+  const int axial_level = layers_level(options.level, options.axial_level);
   const double angle = options.first_axis_angle_rad;
   // Section sizes at the bottom and top of every piece.
   std::vector<SectionGeometry> bottom(pieces.size()), top(pieces.size());

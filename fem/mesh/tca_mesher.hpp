@@ -26,6 +26,9 @@ struct SolidMeshOptions {
   int axial_level = 0;               // element layers per axial band as at this level; 0: `level`
 };
 
+/// The level whose element layers a mesh gets: `axial_level`, or `level` where it is 0 (unset).
+inline int layers_level(int level, int axial_level) { return axial_level > 0 ? axial_level : level; }
+
 /// A 3CA along z ∈ [0, l]: parts "tube", "rings", "sheath"; chambers 1–3, chamber k
 /// about the axis at first_axis_angle + (k − 1)·120°. Node sets "top" (z = l),
 /// "bottom" (z = 0), "symmetry" (y = 0, half models only). With `half`, the
