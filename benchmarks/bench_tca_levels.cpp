@@ -3,7 +3,9 @@
 // memory is its own. For each: model (half/full), DOFs, load steps, Newton
 // iterations, factorisations, time in assembly / factorisation and in total,
 // peak memory, the pressure reaching the target bending angle and the bending
-// angle and tip position at the peak pressure.
+// angle and tip position at the peak pressure. Where three or more runs differ only
+// in their element layers (mesh.axial_level), the three finest are extrapolated to
+// infinitely many layers (fem/post/richardson.hpp) with their observed order.
 //
 // Usage: bench_tca_levels [config] [--runs 1:2,2:1,20:1,20r:1/2 (element:level[/axial level];
 //        element 1 = Hex8, 2 = Hex27, 20 = Hex20, 20r = Hex20 at 2×2×2 points; the axial level,
@@ -13,15 +15,18 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "fem/scenes/scene_config.hpp"
 #include "fem/core/parallel.hpp"
 #include "fem/mesh/tca_mesher.hpp"
+#include "fem/post/richardson.hpp"
 
 using namespace softarm;
 
@@ -32,7 +37,14 @@ double peak_memory_MiB() {
   return u.ru_maxrss / 1024.0;
 }
 
-void run_one(fem::TcaSceneSpec spec, int element, bool reduced, int level, int axial_level, int repeat) {
+// What a run hands back to the parent (through a pipe: each run is its own process).
+struct RunResult {
+  int element = 0, reduced = 0, level = 0, layers = 0;
+  double target_kPa = -1;             // −1: the target bending was not reached
+  double angle_deg = 0, at_kPa = 0;   // at the peak pressure
+};
+
+void run_one(fem::TcaSceneSpec spec, int element, bool reduced, int level, int axial_level, int repeat, int fd) {
   spec.element_order = element == 1 ? 1 : 2;
   spec.serendipity = element == 20;
   spec.integration = reduced ? fem::ElementIntegration::reduced : fem::ElementIntegration::full;
@@ -55,6 +67,40 @@ void run_one(fem::TcaSceneSpec spec, int element, bool reduced, int level, int a
               last.bending_angle_deg, last.pressure_kPa, last.tip_position_mm.x(), last.tip_position_mm.z(),
               fem::to_string(r.path.outcome));
   std::fflush(stdout);
+  const RunResult out{element, reduced, level, fem::layers_level(level, axial_level),
+                      r.target_pressure_kPa.value_or(-1.0), last.bending_angle_deg, last.pressure_kPa};
+  if (write(fd, &out, sizeof out) != static_cast<ssize_t>(sizeof out)) std::perror("bench_tca_levels: pipe");
+}
+
+// Richardson extrapolation over the element layers: runs with the same element and
+// cross-section, the layers' level standing for 1/h (layers per band ∝ level).
+void print_layer_extrapolations(std::vector<RunResult> runs) {
+  std::sort(runs.begin(), runs.end(), [](const RunResult& a, const RunResult& b) {
+    return std::tie(a.element, a.reduced, a.level, a.layers) < std::tie(b.element, b.reduced, b.level, b.layers);
+  });
+  for (std::size_t end = runs.size(); end >= 3;) {
+    const RunResult& f = runs[end - 1];
+    std::size_t begin = end;
+    while (begin > 0 && runs[begin - 1].element == f.element && runs[begin - 1].reduced == f.reduced &&
+           runs[begin - 1].level == f.level)
+      --begin;
+    if (end - begin >= 3) {
+      const RunResult &a = runs[end - 3], &b = runs[end - 2], &c = runs[end - 1];
+      std::printf("layers %d, %d, %d extrapolated (element %d%s, level %d):", a.layers, b.layers, c.layers, f.element,
+                  f.reduced ? "r" : "", f.level);
+      const auto print = [&](const char* what, double fa, double fb, double fc) {
+        const auto e = fem::richardson_extrapolate(1.0 / a.layers, fa, 1.0 / b.layers, fb, 1.0 / c.layers, fc);
+        if (e) std::printf(" %s %.3f (order %.2f, finest %.2f %% off)", what, e->limit, e->order,
+                           100 * e->finest_error / std::abs(e->limit));
+        else std::printf(" %s: not monotone, no extrapolation", what);
+      };
+      if (a.target_kPa > 0 && b.target_kPa > 0 && c.target_kPa > 0)
+        print("p_target_kPa", a.target_kPa, b.target_kPa, c.target_kPa);
+      if (a.at_kPa == b.at_kPa && b.at_kPa == c.at_kPa) print("angle_deg", a.angle_deg, b.angle_deg, c.angle_deg);
+      std::printf("\n");
+    }
+    end = begin;
+  }
 }
 }  // namespace
 
@@ -79,6 +125,7 @@ int main(int argc, char** argv) {
               "angle_deg", "at_kPa", "tip_x", "tip_z", "outcome");
   std::stringstream list(runs);
   std::string item;
+  std::vector<RunResult> results;
   while (std::getline(list, item, ',')) {
     const int element = std::atoi(item.c_str()), level = std::atoi(item.c_str() + item.find(':') + 1);
     const bool reduced = item.find('r') != std::string::npos && item.find('r') < item.find(':');
@@ -89,13 +136,24 @@ int main(int argc, char** argv) {
       return 2;
     }
     std::fflush(stdout);  // else the child inherits, and prints again, what the parent has buffered
+    int fds[2];
+    if (pipe(fds) != 0) {
+      std::perror("bench_tca_levels: pipe");
+      return 1;
+    }
     const pid_t child = fork();
     if (child == 0) {
-      run_one(scene.tca, element, reduced, level, axial_level, repeat);
+      close(fds[0]);
+      run_one(scene.tca, element, reduced, level, axial_level, repeat, fds[1]);
       std::_Exit(0);
     }
+    close(fds[1]);
+    RunResult r;
+    if (read(fds[0], &r, sizeof r) == static_cast<ssize_t>(sizeof r)) results.push_back(r);
+    close(fds[0]);
     int status = 0;
     waitpid(child, &status, 0);
   }
+  print_layer_extrapolations(results);
   return 0;
 }
