@@ -5,9 +5,9 @@
 // accurate) or a "target_error_percent" in its "model" object; the cheapest
 // level whose measured error meets the target is used, and softarm prints
 // which and why. Models dominated by a cheaper, more accurate one (RRA Q2/P1
-// level 2, every Q1/P0 level beyond 1, the 3CA's Hex8, which locks, and its
-// 27-point Hex20 level 1, less accurate and slower than the 8-point one) are
-// not on the ladder.
+// level 2, every Q1/P0 level beyond 1, the 3CA's Hex8, which locks, and on the
+// thesis 3CA every 3D mesh coarser than the reference but the 8-point Hex20 level
+// 1, which is both cheaper and closer to it) are not on the ladder.
 //
 // The numbers are measurements on the thesis designs (README: "Results: the
 // thesis RRA", "The 3CA and SPL scenes", "Reduced model"), not estimates; a
