@@ -82,17 +82,21 @@ TEST_CASE("a scene's fidelity request picks the cheapest level that meets it", "
   CHECK(c.reduced);
   INFO(c.selection->reason);
   CHECK(c.selection->reason.find("whatever its error") != std::string::npos);
-  CHECK(c.selection->reason.find("43 %") != std::string::npos);
+  CHECK(c.selection->reason.find("44 %") != std::string::npos);
   spl["model"] = {{"fidelity", "balanced"}};
   c = read_scene_config(spl);
-  CHECK_FALSE(c.reduced);  // the 3D pose the errors are measured against: level 1 with level 2's layers
+  CHECK_FALSE(c.reduced);  // the 3D pose the errors are measured against: level 1 with level 3's layers
   CHECK(c.spl.mesh_level == 1);
-  CHECK(c.spl.axial_level == 2);
+  CHECK(c.spl.axial_level == 3);
   CHECK(c.spl.serendipity);
   CHECK(c.spl.integration == ElementIntegration::full);
   spl["model"] = {{"target_error_percent", 5.0}};
   c = read_scene_config(spl);
-  CHECK(c.spl.axial_level == 0);  // Hex20 at 2x2x2 points, level 1: 4.2 %
+  CHECK(c.spl.axial_level == 2);  // level 1 with level 2's layers: 2.2 %
+  CHECK(c.spl.integration == ElementIntegration::full);
+  spl["model"] = {{"target_error_percent", 6.5}};
+  c = read_scene_config(spl);
+  CHECK(c.spl.axial_level == 0);  // Hex20 at 2x2x2 points, level 1: 6.1 %
   CHECK(c.spl.integration == ElementIntegration::reduced);
 }
 
