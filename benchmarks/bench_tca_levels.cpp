@@ -84,8 +84,8 @@ void print_layer_extrapolations(std::vector<RunResult> runs) {
     while (begin > 0 && runs[begin - 1].element == f.element && runs[begin - 1].reduced == f.reduced &&
            runs[begin - 1].level == f.level)
       --begin;
-    if (end - begin >= 3) {
-      const RunResult &a = runs[end - 3], &b = runs[end - 2], &c = runs[end - 1];
+    const RunResult &a = runs[end - 3], &b = runs[end - 2], &c = runs[end - 1];
+    if (end - begin >= 3 && a.layers < b.layers && b.layers < c.layers) {  // a repeated run is no refinement
       std::printf("layers %d, %d, %d extrapolated (element %d%s, level %d):", a.layers, b.layers, c.layers, f.element,
                   f.reduced ? "r" : "", f.level);
       const auto print = [&](const char* what, double fa, double fb, double fc) {
