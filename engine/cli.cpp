@@ -22,7 +22,6 @@
 #include "fem/core/input_error.hpp"
 #include "fem/core/json_reader.hpp"
 #include "fem/core/parallel.hpp"
-#include "fem/mesh/tca_mesher.hpp"
 
 namespace softarm::engine {
 namespace {
@@ -67,9 +66,7 @@ int simulate(const std::string& file, const std::string& output_override, int me
     std::cout << "model (fidelity ladder): " << config.selection->level.name << ", expected error "
               << config.selection->level.error_percent << " % — " << config.selection->reason << "\n";
   if (config.reduced) return simulate_reduced(config);
-  const int asked_axial_level =
-      config.scene == "tca" ? config.tca.axial_level : config.scene == "spl" ? config.spl.axial_level : 0;
-  const int axial_level = fem::layers_level(config.mesh_level(), asked_axial_level);
+  const int axial_level = config.layers_level();
   std::cout << "softarm simulate: " << file << " (scene " << config.scene << ", mesh level " << config.mesh_level()
             << (axial_level != config.mesh_level() ? ", axial level " + std::to_string(axial_level) : "")
             << ", element order " << config.element_order() << ", threads " << fem::thread_count() << ")\n";

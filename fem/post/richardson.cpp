@@ -26,8 +26,7 @@ std::optional<RichardsonEstimate> richardson_extrapolate(double h1, double f1, d
     (difference_ratio(h1, h2, h3, mid) < measured ? lo : hi) = mid;
   }
   const double q = 0.5 * (lo + hi);
-  const double C = d12 / (std::pow(h1, q) - std::pow(h2, q));
-  const double limit = f3 - C * std::pow(h3, q);
+  const double limit = richardson_with_order(h2, f2, h3, f3, q);
   return RichardsonEstimate{limit, q, std::abs(limit - f3)};
 }
 

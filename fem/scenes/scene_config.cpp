@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "fem/core/json_reader.hpp"
+#include "fem/mesh/tca_mesher.hpp"
 #include "fem/scenes/fidelity.hpp"
 
 namespace softarm::fem {
@@ -144,8 +145,8 @@ void read_3d_discretisation(JsonReader& root, int& level, int& axial_level, int&
   axial_level = mesh.optional_integer("axial_level", Range::closed(1, 4),
                                       "element layers along the axis as at this level (absent: mesh.level), the "
                                       "cross-section as at mesh.level: the thesis 3CA's level-1 error lies along its "
-                                      "axis, and level 1 with axial_level 2 is within 0.9 % of level 2 at a quarter "
-                                      "of its unknowns (README, One direction at a time)")
+                                      "axis (README, One direction at a time), and level 1 with axial_level 4 is the "
+                                      "fidelity ladder's 3CA reference (README, Layers to level 4)")
                     .value_or(0);
   serendipity = mesh.boolean("serendipity", serendipity,
                              "with element_order 2: 20-node serendipity hexahedra (Hex20/P1, the C3D20 of CalculiX) "
@@ -306,6 +307,12 @@ SceneConfig read_scene_config(const nlohmann::json& document) {
   root.string("description", "", "free text");
   root.finish();
   return config;
+}
+
+int SceneConfig::layers_level() const {
+  if (scene == "tca") return fem::layers_level(tca.mesh_level, tca.axial_level);
+  if (scene == "spl") return fem::layers_level(spl.mesh_level, spl.axial_level);
+  return rra.mesh_level;
 }
 
 void apply_fidelity(SceneConfig& config, double target_error_percent, const std::string& asked) {

@@ -33,6 +33,8 @@ struct SceneConfig {
   bool reduced = false;  // the chosen level is the reduced (rod) model
   int& mesh_level() { return scene == "tca" ? tca.mesh_level : scene == "spl" ? spl.mesh_level : rra.mesh_level; }
   int& element_order() { return scene == "tca" ? tca.element_order : scene == "spl" ? spl.element_order : rra.element_order; }
+  /// The level whose element layers the 3D mesh gets (mesh.axial_level, else mesh.level); the RRA's mesh.level.
+  int layers_level() const;
 };
 
 /// Reads a scene file (the whole document); throws InputError naming the field.
