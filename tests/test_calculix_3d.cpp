@@ -97,7 +97,7 @@ Mesh keep_elements(const Mesh& m, Keep keep) {
     for (int i : nodes)
       if (new_id[i] >= 0) out.node_sets[name].push_back(new_id[i]);
   for (const auto& chamber : m.chambers) {
-    Chamber c{chamber.id, chamber.name, {}};
+    Chamber c{chamber.id, chamber.name, {}, {}};
     for (auto f : chamber.facets) {
       if (std::any_of(f.begin(), f.end(), [&](int i) { return new_id[i] < 0; })) continue;
       for (int& i : f) i = new_id[i];
@@ -127,7 +127,7 @@ Mesh cube_with_cavity(int n, int order) {
       faces[key].push_back(face);
     }
   }
-  Chamber cavity{1, "cavity", {}};
+  Chamber cavity{1, "cavity", {}, {}};
   for (const auto& [key, list] : faces)
     if (list.size() == 1) cavity.facets.push_back(list.front());
   m.chambers = {cavity};
@@ -362,7 +362,7 @@ TEST_CASE("Abaqus export of a 3D mesh: element types, chamber faces, symmetry pl
   deck.chamber_pressure_MPa = {0.01};
   Mesh no_face = linear;
   const int* e0 = linear.element(0);
-  no_face.chambers = {Chamber{1, "diagonal", {{e0[0], e0[1], e0[6], e0[7]}}}};  // a diagonal plane of element 0
+  no_face.chambers = {Chamber{1, "diagonal", {{e0[0], e0[1], e0[6], e0[7]}}, {}}};  // a diagonal plane of element 0
   deck.mesh = &no_face;
   CHECK_THROWS_AS(write_abaqus_deck(path, deck), std::invalid_argument);
   std::filesystem::remove(path);

@@ -21,6 +21,8 @@
 #include "fem/elements/hexahedron.hpp"
 #include "fem/elements/serendipity_quad.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
+#include "fem/forms/plane_face_form.hpp"
+#include "fem/mesh/chamber_lids.hpp"
 #include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/serendipity_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"
@@ -72,7 +74,7 @@ Chamber boundary_chamber(const Mesh& mesh) {
       std::sort(key.begin(), key.end());
       faces[key].push_back(face);
     }
-  Chamber chamber{1, "box", {}};
+  Chamber chamber{1, "box", {}, {}};
   for (const auto& [key, list] : faces)
     if (list.size() == 1) chamber.facets.push_back(list.front());
   return chamber;
@@ -126,6 +128,74 @@ TEST_CASE("3D chamber pressure form: exact box volume, gradient and load stiffne
     CHECK(pressure.chamber->volume(y) == Approx(24.0 * F0.determinant()).epsilon(1e-13));
     pressure.check_derivatives(0.3, std::to_string(nodes == 8 ? 4 : nodes == 20 ? 8 : 9) + "-node facets");
   }
+}
+
+TEST_CASE("3D chamber lids close a cavity cut open, on a closed loop and on a chain ending on y = 0", "[solid3d][cell]") {
+  // The box cavity with its top face (z = 4) cut away, and once also its y = 0 face: a
+  // symmetry plane through the origin adds nothing to V (chamber_pressure_form.hpp), so
+  // the lid's chain then ends on it and its fan closes along it.
+  for (int nodes : kHexKinds)
+    for (const bool half : {false, true}) {
+      Mesh linear = box_mesh(Eigen::Vector3d::Zero(), Eigen::Vector3d(2, 3, 4), 2, 2, 2, 1.0);
+      linear.chambers.push_back(boundary_chamber(linear));
+      Mesh mesh = promoted(linear, nodes);
+      std::vector<int> top;
+      for (int n = 0; n < mesh.num_nodes(); ++n)
+        if (mesh.X(n, 2) == 4.0) top.push_back(n);
+      auto& facets = mesh.chambers[0].facets;
+      const auto on = [&](const std::vector<int>& f, int axis, double value) {
+        return std::all_of(f.begin(), f.end(), [&](int n) { return mesh.X(n, axis) == value; });
+      };
+      std::erase_if(facets, [&](const std::vector<int>& f) { return on(f, 2, 4.0) || (half && on(f, 1, 0.0)); });
+      add_chamber_lids(mesh, top);
+      const std::string label = std::to_string(nodes) + "-node facets" + (half ? ", open at y = 0" : "");
+      INFO(label);
+      REQUIRE(mesh.chambers[0].lids.size() == 1);
+      // The loop runs round the top face's edges: 8 corner nodes, and 8 midside ones on quadratic facets;
+      // the half chain has one node more than the edges it runs along (it does not return to its start).
+      const std::size_t edges = half ? 6 : 8;
+      CHECK(mesh.chambers[0].lids[0].size() == (nodes == 8 ? edges : 2 * edges) + (half ? 1 : 0));
+      const test::PressureOnly pressure(mesh, 0.3);
+      const Vector X = pressure.problem->reference_positions();
+      // The fan spans the flat top exactly, and maps with it under a homogeneous deformation.
+      CHECK(pressure.chamber->volume(X) == Approx(24.0).epsilon(1e-13));
+      Eigen::Matrix3d F0;
+      F0 << 1.2, 0.0, 0.1, 0.0, 0.9, 0.0, 0.05, 0.0, 1.1;  // keeps y = 0 on itself
+      Vector y(X.size()), shifted(X.size());
+      for (int n = 0; n < mesh.num_nodes(); ++n) {
+        y.segment<3>(3 * n) = F0 * X.segment<3>(3 * n);
+        shifted.segment<3>(3 * n) = X.segment<3>(3 * n) + Eigen::Vector3d(0.7, 0.0, -1.3);
+      }
+      CHECK(pressure.chamber->volume(y) == Approx(24.0 * F0.determinant()).epsilon(1e-13));
+      // A closed surface's volume does not depend on the origin (in the plane y = 0 for the half).
+      CHECK(pressure.chamber->volume(shifted) == Approx(24.0).epsilon(1e-13));
+      pressure.check_derivatives(0.3, label);
+    }
+}
+
+TEST_CASE("Plane face form: gradient and Hessian match finite differences", "[solid3d][cell]") {
+  const Mesh mesh = box({2, 1, 1}, 2, 1, 1, 1.0, 20);
+  std::vector<int> top;
+  for (int n = 0; n < mesh.num_nodes(); ++n)
+    if (mesh.X(n, 2) == 1.0) top.push_back(n);
+  const int pilot = mesh.num_nodes();
+  Vector X(3 * (pilot + 1));
+  X << flattened_positions(mesh), 0.0, 0.0, 0.0;
+  EnergyProblem problem(X, DirichletConstraints{});
+  auto plane = std::make_shared<PlaneFaceForm>(top, pilot, 1.0, 3.7);
+  problem.add_form(plane);
+  problem.finalize();
+  Vector x = test::perturbed(X, 0.1);
+  x.tail<3>() << 0.05, -0.2, 0.15;  // offset and both slopes
+  const auto err = test::finite_difference_errors(problem, x, 1e-6);
+  INFO("gradient error " << err.gradient << ", Hessian error " << err.hessian);
+  CHECK(err.gradient < 1e-6);
+  CHECK(err.hessian < 1e-6);
+  // On the plane the penalty vanishes with its gradient.
+  Vector on_plane = x;
+  for (int n : top) on_plane[3 * n + 2] = 1.0 + 0.05 - 0.2 * x[3 * n] + 0.15 * x[3 * n + 1];
+  CHECK(plane->max_gap(on_plane) < 1e-15);
+  CHECK(problem.evaluate(on_plane, true, false).gradient.norm() < 1e-13);
 }
 
 TEST_CASE("3D patch test: a distorted box reproduces a non-symmetric homogeneous deformation", "[solid3d]") {

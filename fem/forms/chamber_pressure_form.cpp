@@ -109,6 +109,51 @@ FacetDerivatives quad_facet_volume(const Vector& x, const std::vector<int>& node
   return d;
 }
 
+// A lid (mesh.hpp, chamber_lids.hpp): the fan of triangles (c, x_i, x_i+1) from the loop's
+// centroid c = (1/m) Σ x_l, the last back to the first. Each triangle adds the signed volume of
+// its cone from the origin, T = (1/6) det[c, a, b], trilinear in (c, a, b):
+//   ∂T/∂c = (a×b)/6, ∂T/∂a = (b×c)/6, ∂T/∂b = (c×a)/6,
+//   ∂²T/∂c∂a = −[b]×/6, ∂²T/∂c∂b = [a]×/6, ∂²T/∂a∂b = −[c]×/6 (and their transposes),
+// and c's share goes to every loop node with weight 1/m.
+struct LidDerivatives {
+  double V = 0.0;
+  Eigen::VectorXd g;  // 3 per loop node
+  Eigen::MatrixXd h;
+};
+
+LidDerivatives lid_volume(const Vector& x, const std::vector<int>& loop, bool want_hessian) {
+  const int m = static_cast<int>(loop.size());
+  LidDerivatives d;
+  d.g = Eigen::VectorXd::Zero(3 * m);
+  if (want_hessian) d.h = Eigen::MatrixXd::Zero(3 * m, 3 * m);
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (int n : loop) c += x.segment<3>(3 * n);
+  c /= m;
+  Eigen::Vector3d gc = Eigen::Vector3d::Zero();   // ∂V/∂c
+  Eigen::MatrixXd hc = Eigen::MatrixXd::Zero(3, 3 * m);  // ∂²V/∂c∂x_l through the triangles' a and b
+  for (int i = 0; i < m; ++i) {
+    const int j = (i + 1) % m;
+    const Eigen::Vector3d a = x.segment<3>(3 * loop[i]), b = x.segment<3>(3 * loop[j]);
+    d.V += c.dot(a.cross(b)) / 6;
+    gc += a.cross(b) / 6;
+    d.g.segment<3>(3 * i) += b.cross(c) / 6;
+    d.g.segment<3>(3 * j) += c.cross(a) / 6;
+    if (!want_hessian) continue;
+    hc.block<3, 3>(0, 3 * i) -= skew(b) / 6;
+    hc.block<3, 3>(0, 3 * j) += skew(a) / 6;
+    d.h.block<3, 3>(3 * i, 3 * j) -= skew(c) / 6;
+    d.h.block<3, 3>(3 * j, 3 * i) += skew(c) / 6;
+  }
+  for (int l = 0; l < m; ++l) d.g.segment<3>(3 * l) += gc / m;
+  if (want_hessian)
+    for (int l = 0; l < m; ++l) {
+      // c depends on every node: ∂²V/∂x_l∂x_k gains (1/m)(∂²V/∂c∂x_k) and its transpose.
+      d.h.block(3 * l, 0, 3, 3 * m) += hc / m;
+      d.h.block(0, 3 * l, 3 * m, 3) += hc.transpose() / m;
+    }
+  return d;
+}
+
 FacetDerivatives facet_volume(int dim, const Vector& x, const std::vector<int>& nodes) {
   if (dim == 2) return edge_volume(x, nodes);
   if (nodes.size() == 4) return quad_facet_volume<axisym::Quad4>(x, nodes);
@@ -125,6 +170,8 @@ ChamberPressureForm::ChamberPressureForm(const Mesh& mesh, int chamber, const Lo
     const bool ok = mesh.dim == 2 ? (f.size() == 2 || f.size() == 3) : (f.size() == 4 || f.size() == 8 || f.size() == 9);
     if (!ok) throw std::logic_error("ChamberPressureForm: facets need 2 or 3 nodes (2D), 4, 8 or 9 nodes (3D)");
   }
+  for (const auto& lid : mesh.chambers[chamber].lids)
+    if (mesh.dim != 3 || lid.size() < 2) throw std::logic_error("ChamberPressureForm: lids are 3D loops of >= 2 nodes");
 }
 
 double ChamberPressureForm::pressure() const {
@@ -139,11 +186,19 @@ void ChamberPressureForm::declare_pattern(SparsePattern& pattern) {
       for (int i = 0; i < mesh_.dim; ++i) dofs.push_back(mesh_.dim * n + i);
     blocks_.push_back(pattern.declare_block(dofs));
   }
+  lid_blocks_.clear();
+  for (const auto& lid : mesh_.chambers[chamber_].lids) {
+    std::vector<int> dofs;
+    for (int n : lid)
+      for (int i = 0; i < 3; ++i) dofs.push_back(3 * n + i);
+    lid_blocks_.push_back(pattern.declare_block(dofs));
+  }
 }
 
 double ChamberPressureForm::volume(const Vector& x) const {
   double V = 0.0;
   for (const auto& f : mesh_.chambers[chamber_].facets) V += facet_volume(mesh_.dim, x, f).V;
+  for (const auto& lid : mesh_.chambers[chamber_].lids) V += lid_volume(x, lid, false).V;
   return V;
 }
 
@@ -153,6 +208,10 @@ Vector ChamberPressureForm::volume_gradient(const Vector& x) const {
   for (const auto& f : mesh_.chambers[chamber_].facets) {
     const auto d = facet_volume(dim, x, f);
     for (int k = 0; k < d.dofs; ++k) g[dim * f[k / dim] + k % dim] += d.g[k];
+  }
+  for (const auto& lid : mesh_.chambers[chamber_].lids) {
+    const auto d = lid_volume(x, lid, false);
+    for (int k = 0; k < d.g.size(); ++k) g[3 * lid[k / 3] + k % 3] += d.g[k];
   }
   return g;
 }
@@ -172,6 +231,17 @@ FormStatus ChamberPressureForm::add(const Vector& x, double* value, Vector* grad
       std::array<double, kMaxDofs * kMaxDofs> h;
       for (int i = 0; i < d.dofs * d.dofs; ++i) h[i] = -p * d.h[i];
       hessian->add_block(0, blocks_[k], h.data());
+    }
+  }
+  const auto& lids = mesh_.chambers[chamber_].lids;
+  for (std::size_t k = 0; k < lids.size(); ++k) {
+    const auto d = lid_volume(x, lids[k], hessian && p != 0.0);
+    if (value) *value -= p * d.V;
+    if (gradient)
+      for (int i = 0; i < d.g.size(); ++i) (*gradient)[3 * lids[k][i / 3] + i % 3] -= p * d.g[i];
+    if (hessian && p != 0.0) {
+      const Eigen::MatrixXd h = -p * d.h;
+      hessian->add_block(0, lid_blocks_[k], h.data());
     }
   }
   return FormStatus::fine();

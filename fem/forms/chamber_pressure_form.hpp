@@ -22,7 +22,10 @@
 // det[x, x_s, x_t] has degree ≤ 2 in each of s, t on a bilinear facet and ≤ 5
 // on a quadratic one, so 2×2 and 3×3 Gauss–Legendre integrate it exactly.
 // The facets must close the cavity: on an open surface (1/3)∫ x·n dA is not a
-// volume and its gradient is not the pressure load.
+// volume and its gradient is not the pressure load. Where a cut leaves the cavity
+// open (a ring-pitch cell), the chamber's lids (mesh.hpp) close it: each adds the
+// cones of its fan's triangles, (1/6) det[c, x_i, x_i+1], so the fluid's push on
+// the cut is part of the same potential and the tangent stays symmetric.
 #include "fem/forms/form.hpp"
 #include "fem/mesh/mesh.hpp"
 
@@ -49,7 +52,7 @@ class ChamberPressureForm : public Form {
   const Mesh& mesh_;
   int chamber_;
   const LoadState& load_;
-  std::vector<int> blocks_;
+  std::vector<int> blocks_, lid_blocks_;
 };
 
 }  // namespace softarm::fem

@@ -19,6 +19,11 @@ struct Chamber {
   int id = 0;            // chamber number as the user sees it (1-based for the SPL)
   std::string name;
   std::vector<std::vector<int>> facets;
+  /// 3D only: flat closures of a cavity that a cut face leaves open (a ring-pitch cell's
+  /// end faces, chamber_lids.hpp). Each is a loop of nodes on the cut, running
+  /// counter-clockwise about the normal out of the cavity; the lid is the fan of
+  /// triangles from the loop's centroid over consecutive nodes, the last back to the first.
+  std::vector<std::vector<int>> lids;
 };
 
 struct Mesh {

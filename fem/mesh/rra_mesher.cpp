@@ -551,7 +551,7 @@ class RraMesher {
     std::vector<int> chain(bottom_face);
     for (int J = bottom_cap_column_ + 1; J <= top_cap_column_; ++J) chain.push_back(columns_[static_cast<std::size_t>(J)].front());
     chain.insert(chain.end(), top_face.rbegin() + 1, top_face.rend());
-    Chamber chamber{1, "chamber", {}};
+    Chamber chamber{1, "chamber", {}, {}};
     for (std::size_t i = 0; i + 1 < chain.size(); ++i) chamber.facets.push_back({chain[i], chain[i + 1]});
     mesh.chambers.push_back(std::move(chamber));
   }

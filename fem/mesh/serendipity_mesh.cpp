@@ -32,7 +32,12 @@ Mesh serendipity_from_triquadratic(const Mesh& hex27) {
       if (new_index[n] >= 0) kept.push_back(new_index[n]);
   }
   for (const Chamber& chamber : hex27.chambers) {
-    Chamber c{chamber.id, chamber.name, {}};
+    Chamber c{chamber.id, chamber.name, {}, {}};
+    for (const auto& lid : chamber.lids) {  // lids run along facet edges: corners and midsides, all kept
+      std::vector<int> loop;
+      for (int n : lid) loop.push_back(new_index[n]);
+      c.lids.push_back(std::move(loop));
+    }
     for (const auto& facet : chamber.facets) {
       // 9-node facets: corners, mid-edges, centre; the centre is not a Hex20 node.
       const std::size_t kept = facet.size() == 9 ? 8 : facet.size();

@@ -107,7 +107,7 @@ Mesh rectangle_mesh(double r0, double r1, double z0, double z1, int nr, int nz, 
   if (r0 == 0) {
     sets["axis"] = sets["inner"];
   } else {
-    Chamber chamber{1, "chamber", {}};
+    Chamber chamber{1, "chamber", {}, {}};
     const auto& inner = sets["inner"];
     for (std::size_t j = 0; j + 1 < inner.size(); ++j) chamber.facets.push_back({inner[j], inner[j + 1]});
     mesh.chambers.push_back(std::move(chamber));
@@ -208,7 +208,7 @@ Mesh hollow_cylinder_mesh(double r_inner, double r_outer, double length, int n_r
       mesh.node_sets["z1"].push_back(id(i, j, n_axial));
     }
   // Facets with s along θ and t along z: x_s × x_t ∝ e_θ × e_z = e_r, out of the bore.
-  Chamber bore{1, "bore", {}};
+  Chamber bore{1, "bore", {}, {}};
   for (int k = 0; k < n_axial; ++k)
     for (int j = 0; j < nc; ++j) bore.facets.push_back({id(0, j, k), id(0, j + 1, k), id(0, j + 1, k + 1), id(0, j, k + 1)});
   mesh.chambers.push_back(std::move(bore));

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fem/mesh/chamber_lids.hpp"
 #include "fem/mesh/layered_extrusion.hpp"
 #include "fem/mesh/serendipity_mesh.hpp"
 #include "fem/mesh/spl_design.hpp"
@@ -66,7 +67,19 @@ struct StackPiece {
   const TcaDesign* segment = nullptr;  // null: connector
   double z0 = 0, z1 = 0;
   int first_chamber = 0;               // mesh chamber index of the segment's actuator 0
+  int cell_ring = 0;                   // > 0: one ring pitch about this ring, a prism of its section
 };
+
+/// The bands of a ring-pitch cell: half a gap, the ring, half a gap, on z ∈ [0, pitch].
+void cell_bands(const RraDesign& d, double a, int level, std::vector<ExtrusionLayer>& layers,
+                std::vector<BandKind>& kinds) {
+  const double p = d.pitch(), z[4] = {0.0, 0.5 * (p - a), 0.5 * (p + a), p};
+  for (int i = 0; i < 3; ++i) {
+    const double h = z[i + 1] - z[i];
+    layers.push_back({z[i], z[i + 1], level * std::max(1, static_cast<int>(std::ceil(h / kMaxBandHeight - 1e-9)))});
+    kinds.push_back({false, i == 1});
+  }
+}
 
 /// The section sizes of a segment at its local height.
 SectionGeometry segment_geometry(const TcaDesign& design, double local_z, double first_axis_angle) {
@@ -109,8 +122,10 @@ Mesh mesh_stack(const std::vector<StackPiece>& pieces, int actuators, int chambe
   std::vector<SectionGeometry> bottom(pieces.size()), top(pieces.size());
   for (std::size_t i = 0; i < pieces.size(); ++i)
     if (pieces[i].segment) {
-      bottom[i] = segment_geometry(*pieces[i].segment, 0.0, angle);
-      top[i] = segment_geometry(*pieces[i].segment, pieces[i].segment->actuator.length_mm, angle);
+      const auto& rra = pieces[i].segment->actuator;
+      const int ring = pieces[i].cell_ring;
+      bottom[i] = segment_geometry(*pieces[i].segment, ring > 0 ? rra.ring_centre_z(ring) : 0.0, angle);
+      top[i] = segment_geometry(*pieces[i].segment, ring > 0 ? rra.ring_centre_z(ring) : rra.length_mm, angle);
     }
   for (std::size_t i = 0; i < pieces.size(); ++i)
     if (!pieces[i].segment) {
@@ -122,6 +137,8 @@ Mesh mesh_stack(const std::vector<StackPiece>& pieces, int actuators, int chambe
     for (std::size_t i = 0; i < pieces.size(); ++i) {
       const auto& p = pieces[i];
       if (z > p.z1 + 1e-9 * (1 + std::abs(p.z1)) && i + 1 < pieces.size()) continue;
+      if (p.segment && p.cell_ring > 0)
+        return segment_geometry(*p.segment, p.segment->actuator.ring_centre_z(p.cell_ring), angle);
       if (p.segment) return segment_geometry(*p.segment, std::clamp(z - p.z0, 0.0, p.z1 - p.z0), angle);
       return lerp(bottom[i], top[i], std::clamp((z - p.z0) / (p.z1 - p.z0), 0.0, 1.0));
     }
@@ -147,7 +164,10 @@ Mesh mesh_stack(const std::vector<StackPiece>& pieces, int actuators, int chambe
     std::vector<ExtrusionLayer> bands;
     std::vector<BandKind> band_kinds;
     const RraDesign& rra = p.segment->actuator;
-    actuator_bands(rra, rra.ring_count > 0 ? square_ring_side_mm(rra) : 0.0, axial_level, bands, band_kinds);
+    if (p.cell_ring > 0)
+      cell_bands(rra, square_ring_side_mm(rra), axial_level, bands, band_kinds);
+    else
+      actuator_bands(rra, rra.ring_count > 0 ? square_ring_side_mm(rra) : 0.0, axial_level, bands, band_kinds);
     for (std::size_t b = 0; b < bands.size(); ++b) {
       layers.push_back({bands[b].z0 + p.z0, bands[b].z1 + p.z0, bands[b].divisions});
       kinds.push_back({band_kinds[b], static_cast<int>(i)});
@@ -179,7 +199,7 @@ Mesh mesh_stack(const std::vector<StackPiece>& pieces, int actuators, int chambe
                : -1;
   };
   std::vector<Chamber> chambers;
-  for (int i = 0; i < chamber_count; ++i) chambers.push_back({i + 1, chamber_names[i], {}});
+  for (int i = 0; i < chamber_count; ++i) chambers.push_back({i + 1, chamber_names[i], {}, {}});
   std::vector<std::string> parts = {"tube", "rings"};
   if (with_core) parts.push_back("sheath");
   bool has_connector = false;
@@ -202,6 +222,16 @@ std::vector<std::string> numbered_chambers(int count) {
 
 Mesh mesh_tca(const TcaDesign& design, const SolidMeshOptions& options) {
   return mesh_stack({{&design, 0.0, design.actuator.length_mm, 0}}, 3, 3, options, numbered_chambers(3));
+}
+
+Mesh mesh_tca_cell(const TcaDesign& design, int ring, const SolidMeshOptions& options) {
+  const RraDesign& rra = design.actuator;
+  if (ring < 1 || ring > rra.ring_count)
+    throw std::logic_error("mesh_tca_cell: ring " + std::to_string(ring) + " outside 1.." + std::to_string(rra.ring_count));
+  Mesh mesh = mesh_stack({{&design, 0.0, rra.pitch(), 0, ring}}, 3, 3, options, numbered_chambers(3));
+  add_chamber_lids(mesh, mesh.node_sets.at("bottom"));
+  add_chamber_lids(mesh, mesh.node_sets.at("top"));
+  return mesh;
 }
 
 Mesh mesh_rra_3d(const RraDesign& design, const SolidMeshOptions& options) {

@@ -36,6 +36,14 @@ inline int layers_level(int level, int axial_level) { return axial_level > 0 ? a
 /// (or the midpoint between chambers 2 and 3) lies on it: first_axis_angle 0 or π.
 Mesh mesh_tca(const TcaDesign& design, const SolidMeshOptions& options);
 
+/// One ring pitch of a 3CA about ring k (1 = nearest the bottom), z ∈ [0, pitch]: half a
+/// gap, the ring, half a gap, as a prism of the section at the ring's centre (the taper
+/// over one pitch left out), so the cell is mirror-symmetric about its mid-plane. Its
+/// chambers are open at both end faces and closed there by lids (chamber_lids.hpp).
+/// Node sets "bottom", "top" and, in half models, "symmetry". Throws std::logic_error
+/// for a ring outside 1..ring_count.
+Mesh mesh_tca_cell(const TcaDesign& design, int ring, const SolidMeshOptions& options);
+
 /// A lone RRA along z ∈ [0, l] in 3D: parts "tube", "rings"; chamber 1; node sets
 /// as mesh_tca. The 3D twin of the axisymmetric model with square rings.
 Mesh mesh_rra_3d(const RraDesign& design, const SolidMeshOptions& options);

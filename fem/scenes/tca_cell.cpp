@@ -1,0 +1,182 @@
+#include "fem/scenes/tca_cell.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "fem/forms/plane_face_form.hpp"
+#include "fem/mesh/tca_mesher.hpp"
+#include "fem/solver/linear_solver.hpp"
+#include "fem/solver/load_stepper.hpp"
+
+namespace softarm::fem {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+// The plane's penalty per node: this many times the stiffest silicone's initial shear
+// modulus times 1 mm (plane_face_form.hpp).
+constexpr double kPlanePenaltyRatio = 1e4;
+}  // namespace
+
+TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad& end_load) {
+  const auto t0 = std::chrono::steady_clock::now();
+  validate(spec.design);
+  TcaCellResult out;
+  out.ring = ring;
+  out.pitch_mm = spec.design.actuator.pitch();
+  out.ring_centre_z_mm = ring >= 1 ? spec.design.actuator.ring_centre_z(ring) : 0.0;
+  // The mirror plane, from the pressures and the end moment (gravity has no part here).
+  TcaSceneSpec frame_spec = spec;
+  frame_spec.gravity_m_s2 = Eigen::Vector3d::Zero();
+  out.model = choose_tca_model(frame_spec);
+  if (out.model.half) {
+    // A moment keeps the mirror plane only if it turns about the plane's normal.
+    const double angle = out.model.frame_angle_rad;
+    if (std::abs(end_load.moment_Nmm.dot(Eigen::Vector2d(std::cos(angle), std::sin(angle)))) >
+        1e-12 * (1 + end_load.moment_Nmm.norm())) {
+      frame_spec.allow_symmetry = false;
+      out.model = choose_tca_model(frame_spec);
+      out.model.reason = "the end moment turns out of the mirror plane";
+    }
+  }
+  const double theta = out.model.frame_angle_rad;
+  SolidMeshOptions options;
+  options.level = spec.mesh_level;
+  options.axial_level = spec.axial_level;
+  options.order = spec.element_order;
+  options.serendipity = spec.serendipity;
+  options.half = out.model.half;
+  options.first_axis_angle_rad = -theta;
+  const Mesh mesh = mesh_tca_cell(spec.design, ring, options);
+  const std::vector<Material> materials = tca_part_materials(spec);
+
+  // Positions: the mesh's nodes, then the pilot (a, b, c) at the origin.
+  const int pilot = mesh.num_nodes();
+  Vector X(3 * (pilot + 1));
+  X.head(3 * pilot) = flattened_positions(mesh);
+  X.tail<3>().setZero();
+  DirichletConstraints bc;
+  std::vector<char> fixed_z(mesh.num_nodes(), 0), on_symmetry(mesh.num_nodes(), 0);
+  for (int n : mesh.node_sets.at("bottom")) bc.fix(3 * n + 2), fixed_z[n] = 1;
+  if (const auto it = mesh.node_sets.find("symmetry"); it != mesh.node_sets.end())
+    for (int n : it->second) bc.fix(3 * n + 1), on_symmetry[n] = 1;
+  // In-plane rigid motion of the bottom face: the node nearest the axis holds x (and y in a
+  // full model); in a full model the bottom node farthest from it holds its tangential
+  // direction too (rotation about z). The supports carry no force at equilibrium.
+  int centre = -1, far = -1;
+  double best = std::numeric_limits<double>::infinity(), farthest = -1;
+  for (int n : mesh.node_sets.at("bottom")) {
+    const double r = mesh.X.row(n).head<2>().norm();
+    if ((!out.model.half || on_symmetry[n]) && r < best) best = r, centre = n;
+    if (r > farthest) farthest = r, far = n;
+  }
+  bc.fix(3 * centre);
+  if (!out.model.half) {
+    bc.fix(3 * centre + 1);
+    const bool along_x = std::abs(mesh.X(far, 0)) < std::abs(mesh.X(far, 1));
+    bc.fix(3 * far + (along_x ? 0 : 1));
+  }
+  if (out.model.half) bc.fix(3 * pilot + 2);  // no slope across the mirror plane
+  EnergyProblem problem(X, bc);
+  auto elastic = make_elastic_form(mesh, materials, VolumetricTreatment::projected_dilatation,
+                                   hex20_integration(mesh, spec.integration));
+  out.element_name = elastic->element_name();
+  problem.add_form(elastic);
+  double mu = 0;
+  for (std::size_t p = 0; p < materials.size(); ++p)
+    if (mesh.part_names[p] != "rings") mu = std::max(mu, materials[p].law->initial_shear_modulus());
+  auto plane = std::make_shared<PlaneFaceForm>(mesh.node_sets.at("top"), pilot, out.pitch_mm, kPlanePenaltyRatio * mu);
+  problem.add_form(plane);
+  if (spec.newton.rotate_stiff_parts) problem.set_stiff_inclusions(stiff_parts(mesh, materials));
+  LoadState load;
+  load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
+  // End loads on the pilot, before the pressures (DofLoadForm): the axial force on a, and the
+  // moment's work M·φ with the face's rotation φ = (c, −b) about the solver's x and y
+  // (z = a + b·x + c·y: turning by φ_y about +y gives b = −φ_y, by φ_x about +x gives c = φ_x).
+  const Eigen::Vector2d m = rotation_about_z(-theta).topLeftCorner<2, 2>() * end_load.moment_Nmm;
+  const double share = out.model.half ? 0.5 : 1.0;  // a half model carries half of every load
+  const bool end_loaded = end_load.axial_force_N != 0 || end_load.moment_Nmm.norm() > 0;
+  problem.add_form(std::make_shared<DofLoadForm>(
+      std::vector<int>{3 * pilot, 3 * pilot + 1, 3 * pilot + 2},
+      std::vector<double>{share * end_load.axial_force_N, -share * m.y(), share * m.x()}, load));
+  const ChamberLoads chambers = add_chamber_loads(
+      mesh, {spec.chamber_pressure_kPa.begin(), spec.chamber_pressure_kPa.end()}, load, problem);
+  problem.finalize();
+  out.dofs = problem.num_dofs();
+
+  // The scene bends away from its pressurised chambers (tca_scene.cpp): −Σ p_k e_k.
+  Eigen::Vector2d bend = Eigen::Vector2d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const double angle = k * 2 * kPi / 3 - theta;
+    bend -= spec.chamber_pressure_kPa[k] * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+  }
+  const double L = out.pitch_mm;
+  double kg = 0;
+  for (const auto& [part, m] : part_masses_kg(mesh, materials, 1 / share)) kg += m;
+  out.mass_per_length_kg_per_mm = kg / L;
+  // The end face's compliance from the tangent: K z = e_d for the pilot's dofs a and b (the
+  // slope in the bend plane: the mirror plane, or the pressures' bend direction, else x).
+  const int bend_dof = std::abs(bend.y()) > std::abs(bend.x()) ? 3 * pilot + 2 : 3 * pilot + 1;
+  const auto add_compliance = [&](TcaCellState& c, const Vector& xs) {
+    const Evaluation e = problem.evaluate(xs, false, true);
+    LinearSolver solver;
+    if (solver.factorize(e.hessian) != LinearSolver::Status::positive_definite) return;
+    const auto response = [&](int dof) {
+      Eigen::VectorXd unit = Eigen::VectorXd::Zero(problem.num_dofs());
+      unit[dof] = 1.0;
+      return solver.solve(unit)[dof];
+    };
+    // A unit generalised force on b is −M_y (c: M_x): dφ = C·share·dM, κ = φ/L; on a, N: dλ = C·share·dN/L.
+    c.bending_compliance_per_Nmm2 = response(bend_dof) * share / L;
+    c.axial_compliance_per_N = response(3 * pilot) * share / L;
+  };
+  const auto state_of = [&](double pressure_kPa, double volume_mm3, const Vector& xs) {
+    TcaCellState c;
+    c.pressure_kPa = pressure_kPa;
+    const double a = xs[3 * pilot], b = xs[3 * pilot + 1], cy = xs[3 * pilot + 2];
+    c.stretch = 1 + a / L;
+    const Eigen::Vector2d towards(-b, -cy);  // the end face's normal leans this way
+    c.curvature_per_mm = std::atan(towards.norm()) / L;
+    if (towards.dot(bend.norm() > 0 ? bend : Eigen::Vector2d(m.y(), -m.x())) < 0) c.curvature_per_mm = -c.curvature_per_mm;
+    c.chamber_volume_mm3 = volume_mm3 / share;
+    c.plane_gap_mm = plane->max_gap(xs);
+    return c;
+  };
+  Vector x = X;
+  if (chambers.loaded.empty()) {
+    // No pressure: the end loads alone, in one step (the controller cuts back if it must).
+    LinearSolver solver;
+    PathCallbacks callbacks;
+    callbacks.apply_load = [&](double level) { load.gravity_scale = level; };
+    callbacks.on_converged = [](double, const Vector&, bool, const NewtonReport&) {};
+    StepSettings one_step = spec.steps;
+    one_step.initial_increment = one_step.max_increment = 1.0;
+    out.path.path = follow_load_path(problem, x, solver, {1.0}, callbacks, spec.newton, one_step);
+    out.path.outcome = out.path.path.completed ? PathOutcome::completed : PathOutcome::stalled;
+    out.path.diagnosis = out.path.path.message;
+    out.states.push_back(state_of(0.0, 0.0, x));
+    out.states.back().newton_iterations = out.path.path.stats.newton_iterations;
+    out.states.back().is_output = true;
+    if (out.path.path.completed) add_compliance(out.states.back(), x);
+  } else {
+    PressurePathSpec path;
+    path.pressure_fractions = chambers.fractions;
+    path.gravity_preload = end_loaded;
+    path.max_pressure_kPa = chambers.peak_kPa;
+    path.output_pressures_kPa = spec.output_pressures_kPa;
+    path.newton = spec.newton;
+    path.steps = spec.steps;
+    path.limit = spec.limit;
+    path.node_dimension = 0;  // the pilot is not a node of the mesh
+    out.path = run_pressure_path(problem, chambers.loaded, load, x, path, [&](const PressureState& s, const Vector& xs) {
+      out.states.push_back(state_of(s.pressure_kPa, s.chamber_volume_mm3, xs));
+      out.states.back().newton_iterations = s.newton_iterations;
+      out.states.back().is_output = s.is_output;
+      if (s.is_output) add_compliance(out.states.back(), xs);
+    });
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace softarm::fem

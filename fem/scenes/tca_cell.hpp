@@ -1,0 +1,63 @@
+#pragma once
+// A ring-pitch cell of a 3CA: the section's own response to its chamber pressures,
+// free of the end caps, the clamp and the taper. One ring pitch about ring k, as a
+// prism of the section at the ring's centre (tca_mesher.hpp, mesh_tca_cell), with
+// its chambers closed by lids on the cut faces (chamber_lids.hpp). The bottom face
+// stays on z = 0 and the top face on a plane z = L + a + b·x + c·y
+// (plane_face_form.hpp); their in-plane motion is free. By the cell's mirror symmetry
+// about its mid-plane this is a slice of a long, uniformly bent and stretched 3CA:
+// the homogenised beam of Buannic & Cartraud (2001) at the scale of one ring.
+//
+// What it gives, at every pressure: the free axial stretch λ₀ = 1 + a/L of the 3CA
+// axis and the free curvature κ₀ = atan(|(b, c)|)/L per reference length, signed
+// positive towards the side the full scene bends to (away from the pressurised
+// chambers). Optional dead end loads (an axial force, a moment) give the section's
+// stiffness by difference. Gravity is not a uniform bending load and is left out.
+//
+// This is the calibration a rod (fem/reduced) can take from the FEM instead of its
+// fibre section: the 3CA's bending angle is ∫ κ₀ dz along its ringed length plus
+// what the caps and the clamp add, which the cell leaves out by construction.
+#include <vector>
+
+#include "fem/scenes/tca_scene.hpp"
+
+namespace softarm::fem {
+
+struct TcaCellState {
+  double pressure_kPa = 0;      // of the most pressurised chamber
+  double stretch = 1;           // λ₀ of the 3CA axis
+  double curvature_per_mm = 0;  // κ₀, per reference length; > 0 towards the scene's bend
+  double chamber_volume_mm3 = 0;  // Σ f_i V_i over the loaded chambers, whole cell
+  double plane_gap_mm = 0;      // largest distance of an end-face node from its plane (the penalty's slack)
+  /// At output states: the tangent's response to an end moment about the bend axis with the
+  /// axial force held, dκ/dM (1/(N·mm²); 1/EI of a plain beam), and to an axial force with the
+  /// moment held, dλ/dN (1/N). 0 where the tangent is not positive definite (past a limit point).
+  double bending_compliance_per_Nmm2 = 0;
+  double axial_compliance_per_N = 0;
+  int newton_iterations = 0;
+  bool is_output = false;
+};
+
+struct TcaCellResult {
+  ModelChoice model;
+  int ring = 0;
+  double ring_centre_z_mm = 0, pitch_mm = 0;
+  std::string element_name;
+  int dofs = 0;
+  double mass_per_length_kg_per_mm = 0;  // the whole cell's mass over its pitch (rings smeared)
+  std::vector<TcaCellState> states;  // every converged state, rest included
+  PressurePathResult path;
+  double seconds = 0;
+};
+
+/// Dead loads on the cell's top face besides the pressures (user frame, about the axis).
+struct CellEndLoad {
+  double axial_force_N = 0;                               // tension > 0
+  Eigen::Vector2d moment_Nmm = Eigen::Vector2d::Zero();  // about x and y, right-handed
+};
+
+/// Runs the cell about `ring` (1..ring_count) of spec.design with the spec's materials,
+/// mesh, chamber pressures, outputs and solver settings; spec.gravity is ignored.
+TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad& end_load = {});
+
+}  // namespace softarm::fem

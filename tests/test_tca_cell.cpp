@@ -1,0 +1,95 @@
+// The ring-pitch cell of a 3CA (fem/scenes/tca_cell.hpp): at small end loads a cell of
+// one silicone is the linear beam EA, EI of its section (closed form, with A and I from
+// the rod's exact section, rod_section.hpp); under pressure, rigid rings are what make
+// it stretch and bend (a closed tube of incompressible silicone does neither, Lamé).
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "fem/reduced/rod_section.hpp"
+#include "fem/scenes/tca_cell.hpp"
+
+using namespace softarm::fem;
+
+namespace {
+/// The thesis 3CA (configs/tca_thesis.json's design), Hex20 at 2×2×2 points, level 1.
+TcaSceneSpec thesis_cell_spec() {
+  TcaSceneSpec s;
+  RraDesign& a = s.design.actuator;
+  a.length_mm = 160;
+  a.bottom_radius_mm = 9;
+  a.top_radius_mm = 12;
+  a.wall_thickness_mm = 0.466 * 9;
+  a.end_cap_thickness_mm = 0.25 * 9;
+  a.ring_count = 30;
+  a.ring_diameter_mm = 0.4 * 160.0 / 30;
+  s.design.actuator_spacing_mm = 3;
+  s.design.sheath_thickness_mm = 2;
+  s.tube_material = s.sheath_material = builtin_material("dragon_skin_30", "test");
+  s.ring_material = builtin_material("digital_abs", "test");
+  s.serendipity = true;
+  s.integration = ElementIntegration::reduced;
+  return s;
+}
+}  // namespace
+
+TEST_CASE("A silicone cell under small end loads is the section's EA and EI", "[cell]") {
+  TcaSceneSpec spec = thesis_cell_spec();
+  spec.ring_material = spec.tube_material;  // one material: a prism with three bores
+  const int ring = 15;
+  const double z = spec.design.actuator.ring_centre_z(ring);
+  // A and I about the 3CA axis (the centroid, by the section's three-fold symmetry) from the
+  // rod's section, which integrates the circles exactly (strips of width Δy add Δy²/12 each).
+  const RodSection section = tca_section(spec.design, z, 0.0, 96);
+  double A = 0, I = 0;
+  const double dy = section.strips[1].y - section.strips[0].y;
+  for (const auto& s : section.strips) {
+    A += s.tube_area + s.sheath_area;
+    I += (s.y * s.y + dy * dy / 12) * (s.tube_area + s.sheath_area);
+  }
+  const auto& law = *spec.tube_material.law;
+  const double mu = law.initial_shear_modulus(), K = law.initial_bulk_modulus(), E = 9 * K * mu / (3 * K + mu);
+  // Strains of 10⁻³: the cell answers linearly to ~10⁻³ of itself.
+  CellEndLoad pull;
+  pull.axial_force_N = 1e-3 * E * A;
+  const TcaCellResult stretched = run_tca_cell(spec, ring, pull);
+  REQUIRE(stretched.path.outcome == PathOutcome::completed);
+  CellEndLoad bend;
+  bend.moment_Nmm = Eigen::Vector2d(0, 1e-3 * E * I / 10.0);  // κ = 10⁻⁴ /mm, about the mirror plane's normal
+  const TcaCellResult bent = run_tca_cell(spec, ring, bend);
+  REQUIRE(bent.path.outcome == PathOutcome::completed);
+  CHECK(bent.model.half);
+  const TcaCellState& s = stretched.states.back();
+  const TcaCellState& b = bent.states.back();
+  INFO("A " << A << " mm², I " << I << " mm⁴, E " << E << " MPa; stretch " << s.stretch << ", curvature "
+            << b.curvature_per_mm << " /mm, plane gaps " << s.plane_gap_mm << ", " << b.plane_gap_mm << " mm");
+  // The mesh's polygons of 8 quadratic edges per bore, and the faces' penalty, against exact circles: 1 %.
+  CHECK(s.stretch - 1 == Approx(1e-3).epsilon(0.01));
+  CHECK(b.curvature_per_mm == Approx(1e-4).epsilon(0.01));
+  CHECK(std::abs(b.stretch - 1) < 1e-3 * 1e-2);  // no coupling about the centroid
+  // The tangent's compliances at the loaded states: the same beam.
+  CHECK(s.axial_compliance_per_N * E * A == Approx(1).epsilon(0.01));
+  CHECK(b.bending_compliance_per_Nmm2 * E * I == Approx(1).epsilon(0.01));
+  CHECK(s.plane_gap_mm < 2e-3 * (s.stretch - 1) * stretched.pitch_mm);  // the penalty holds the plane to ~10⁻³
+}
+
+TEST_CASE("Rigid rings make a pressurised cell stretch and bend; silicone ones barely", "[cell]") {
+  TcaSceneSpec spec = thesis_cell_spec();
+  spec.chamber_pressure_kPa = {0, 20, 20};
+  spec.output_pressures_kPa = {20};
+  const TcaCellResult abs_rings = run_tca_cell(spec, 15);
+  spec.ring_material = spec.tube_material;
+  const TcaCellResult silicone_rings = run_tca_cell(spec, 15);
+  REQUIRE(abs_rings.path.outcome == PathOutcome::completed);
+  REQUIRE(silicone_rings.path.outcome == PathOutcome::completed);
+  const TcaCellState& r = abs_rings.states.back();
+  const TcaCellState& s = silicone_rings.states.back();
+  INFO("ABS rings: stretch " << r.stretch << ", " << r.curvature_per_mm * 180 / M_PI << " deg/mm; silicone: "
+                             << s.stretch << ", " << s.curvature_per_mm * 180 / M_PI << " deg/mm");
+  CHECK(r.pressure_kPa == Approx(20));
+  // Towards the unpressurised chamber, and longer: the rings hold the chambers' width, the
+  // squeezed wall lengthens (README, "Where the rod's error comes from").
+  CHECK(r.curvature_per_mm > 0);
+  CHECK(r.stretch > 1.005);
+  CHECK(std::abs(s.stretch - 1) < 0.05 * (r.stretch - 1));
+  CHECK(std::abs(s.curvature_per_mm) < 0.05 * r.curvature_per_mm);
+}
