@@ -3,7 +3,13 @@
 // over the ringed length, for comparison with the whole 3CA's curve (gravity off).
 //
 //   bench_tca_cell [config] [--rings 1,15,30] [--axial-level N] [--threads N]
+//                  [--compare curve.csv]   (a `softarm simulate` curve of the same 3CA)
+#include <array>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <map>
 #include <cstdlib>
 #include <sstream>
 #include <string>
@@ -16,12 +22,13 @@
 using namespace softarm;
 
 int main(int argc, char** argv) {
-  std::string config = "configs/tca_thesis.json", rings_arg;
+  std::string config = "configs/tca_thesis.json", rings_arg, compare;
   int axial_level = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--rings" && i + 1 < argc) rings_arg = argv[++i];
     else if (a == "--axial-level" && i + 1 < argc) axial_level = std::atoi(argv[++i]);
+    else if (a == "--compare" && i + 1 < argc) compare = argv[++i];
     else if (a == "--threads" && i + 1 < argc) fem::set_thread_count(std::atoi(argv[++i]));
     else config = a;
   }
@@ -39,8 +46,12 @@ int main(int argc, char** argv) {
   for (std::string item; std::getline(list, item, ',');) rings.push_back(std::atoi(item.c_str()));
   std::printf("%s: %d rings, pitch %.4f mm, threads %d\n", config.c_str(), n, spec.design.actuator.pitch(),
               fem::thread_count());
+  std::vector<fem::TcaCellResult> cells;
+  double cell_seconds = 0;
   for (int ring : rings) {
     const auto r = fem::run_tca_cell(spec, ring);
+    cells.push_back(r);
+    cell_seconds += r.seconds;
     std::printf("\nring %d at z = %.3f mm: %s, %s, %d dofs, %d steps, %d Newton, %.1f s; %s%s\n", ring,
                 r.ring_centre_z_mm, r.model.name.c_str(), r.element_name.c_str(), r.dofs, r.path.path.stats.steps,
                 r.path.path.stats.newton_iterations, r.seconds, fem::to_string(r.path.outcome),
@@ -56,6 +67,41 @@ int main(int argc, char** argv) {
       else
         std::printf(" %14s %12s\n", s.is_output ? "-" : "", s.is_output ? "-" : "");
     }
+  }
+  // The cell rod along the config's outputs, with the config's gravity and without.
+  std::map<double, double> reference;  // pressure → bending of the compared curve
+  if (!compare.empty()) {
+    std::ifstream in(compare);
+    std::string line;
+    std::getline(in, line);
+    for (double p, angle; std::getline(in, line);)
+      if (std::sscanf(line.c_str(), "%lf,%lf", &p, &angle) == 2) reference[p] = angle;
+  }
+  fem::CellRodSpec rod = fem::tca_cell_rod(spec, cells);
+  fem::CellRodSpec weightless = rod;
+  weightless.gravity_along_bend_m_s2 = weightless.gravity_along_axis_m_s2 = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<std::array<fem::CellRodState, 2>> curve;
+  std::vector<double> pressures = {0.0};
+  pressures.insert(pressures.end(), spec.output_pressures_kPa.begin(), spec.output_pressures_kPa.end());
+  for (double p : pressures) curve.push_back({fem::solve_cell_rod(rod, p), fem::solve_cell_rod(weightless, p)});
+  const double rod_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("\ncell rod from %zu cells (%.1f s of cells, %.3f s for the curve; gravity %.3f along the bend, %.3f along z m/s^2)\n",
+              cells.size(), cell_seconds, rod_seconds, rod.gravity_along_bend_m_s2, rod.gravity_along_axis_m_s2);
+  std::printf("%12s %12s %10s %10s %14s %12s %10s\n", "pressure_kPa", "bending_deg", "tip_bend", "tip_z",
+              "weightless_deg", "compared_deg", "error_%");
+  for (const auto& [with, without] : curve) {
+    if (!with.ok) {
+      std::printf("%12.2f  %s\n", with.pressure_kPa, with.diagnosis.c_str());
+      continue;
+    }
+    std::printf("%12.2f %12.3f %10.2f %10.2f %14.3f", with.pressure_kPa, with.bending_angle_deg, with.tip_along_bend_mm,
+                with.tip_z_mm, without.bending_angle_deg);
+    const auto it = reference.find(with.pressure_kPa);
+    if (it != reference.end() && std::abs(it->second) > 1e-9)
+      std::printf(" %12.3f %10.2f\n", it->second, 100 * (with.bending_angle_deg - it->second) / std::abs(it->second));
+    else
+      std::printf("\n");
   }
   return 0;
 }

@@ -58,7 +58,7 @@ int simulate(const std::string& file, const std::string& output_override, int me
     std::cout << "--mesh-level / --element-order override the fidelity ladder's choice (" << config.selection->level.name
               << ")\n";
     config.selection.reset();
-    config.reduced = false;
+    config.reduced = config.cell_rod = false;
   }
   if (mesh_level_override > 0) config.mesh_level() = mesh_level_override;
   if (element_order_override > 0) config.element_order() = element_order_override;

@@ -6,6 +6,7 @@
 #include "engine/output_files.hpp"
 #include "engine/spl_report.hpp"
 #include "fem/reduced/reduced_scenes.hpp"
+#include "fem/scenes/tca_cell.hpp"
 
 namespace softarm::engine {
 namespace {
@@ -61,9 +62,47 @@ int simulate_reduced_spl(const fem::SceneConfig& config) {
   return f.converged ? 0 : 1;
 }
 
+int simulate_cell_rod_tca(const fem::SceneConfig& config) {
+  const auto& dir = config.output.directory;
+  const fem::TcaSceneSpec& spec = config.tca;
+  std::cout << "cell rod: ring-pitch cells about rings";
+  const fem::CellRodTcaResult r = fem::run_cell_rod_tca(spec);
+  for (int ring : r.rings) std::cout << " " << ring;
+  std::cout << " (" << r.cell_dofs << " dofs each, " << std::setprecision(3) << r.cell_seconds << " s), the rod "
+            << r.rod_seconds << " s\n";
+  std::ofstream csv = open_output_file(dir, "curve.csv");
+  csv << "pressure_kPa,bending_angle_deg,tip_along_bend_mm,tip_z_mm\n";
+  std::cout << std::setw(14) << "pressure_kPa" << std::setw(14) << "bending_deg" << std::setw(18) << "tip_along_bend_mm"
+            << std::setw(12) << "tip_z_mm" << "\n";
+  for (const auto& s : r.curve) {
+    csv << s.pressure_kPa << "," << s.bending_angle_deg << "," << s.tip_along_bend_mm << "," << s.tip_z_mm << "\n";
+    std::cout << std::fixed << std::setprecision(2) << std::setw(14) << s.pressure_kPa << std::setprecision(3)
+              << std::setw(14) << s.bending_angle_deg << std::setw(18) << s.tip_along_bend_mm << std::setw(12)
+              << s.tip_z_mm << "\n";
+  }
+  std::cout.unsetf(std::ios::floatfield);
+  std::cout << spec.target_bending_deg << "° ";
+  if (r.target_pressure_kPa) std::cout << "at " << std::fixed << std::setprecision(2) << *r.target_pressure_kPa << " kPa\n";
+  else std::cout << "not reached\n";
+  std::cout.unsetf(std::ios::floatfield);
+  if (!r.converged) std::cout << "outcome: stopped — " << r.diagnosis << "\n";
+  nlohmann::json curve = nlohmann::json::array();
+  for (const auto& s : r.curve)
+    curve.push_back({{"pressure_kPa", s.pressure_kPa}, {"bending_angle_deg", s.bending_angle_deg},
+                     {"tip_along_bend_mm", s.tip_along_bend_mm}, {"tip_z_mm", s.tip_z_mm}});
+  write_json_file(dir, "summary.json",
+                  {{"scene", "tca"}, {"model", model_json(config)}, {"curve", curve},
+                   {"target_pressure_kPa", r.target_pressure_kPa ? nlohmann::json(*r.target_pressure_kPa) : nlohmann::json()},
+                   {"cell_rings", r.rings}, {"cell_dofs", r.cell_dofs}, {"outcome", r.converged ? "completed" : "stopped"},
+                   {"diagnosis", r.diagnosis}, {"cell_seconds", r.cell_seconds}, {"rod_seconds", r.rod_seconds}});
+  std::cout << "written: " << dir << "/curve.csv, " << dir << "/summary.json\n";
+  return r.converged ? 0 : 1;
+}
+
 }  // namespace
 
 int simulate_reduced(const fem::SceneConfig& config) {
+  if (config.scene == "tca" && config.cell_rod) return simulate_cell_rod_tca(config);
   if (config.scene == "spl") return simulate_reduced_spl(config);
   if (config.scene == "rra") {
     const fem::ReducedRraResult r = fem::run_reduced_rra(config.rra);

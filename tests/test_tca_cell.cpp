@@ -4,37 +4,25 @@
 // it stretch and bend (a closed tube of incompressible silicone does neither, Lamé).
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <string>
 
 #include "fem/reduced/rod_section.hpp"
+#include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/tca_cell.hpp"
 
 using namespace softarm::fem;
 
 namespace {
-/// The thesis 3CA (configs/tca_thesis.json's design), Hex20 at 2×2×2 points, level 1.
+/// The thesis 3CA scene (configs/tca_thesis.json: Hex20 at 2×2×2 points, level 1).
 TcaSceneSpec thesis_cell_spec() {
-  TcaSceneSpec s;
-  RraDesign& a = s.design.actuator;
-  a.length_mm = 160;
-  a.bottom_radius_mm = 9;
-  a.top_radius_mm = 12;
-  a.wall_thickness_mm = 0.466 * 9;
-  a.end_cap_thickness_mm = 0.25 * 9;
-  a.ring_count = 30;
-  a.ring_diameter_mm = 0.4 * 160.0 / 30;
-  s.design.actuator_spacing_mm = 3;
-  s.design.sheath_thickness_mm = 2;
-  s.tube_material = s.sheath_material = builtin_material("dragon_skin_30", "test");
-  s.ring_material = builtin_material("digital_abs", "test");
-  s.serendipity = true;
-  s.integration = ElementIntegration::reduced;
-  return s;
+  return load_scene_config(std::string(SOFTARM_SOURCE_DIR) + "/configs/tca_thesis.json").tca;
 }
 }  // namespace
 
 TEST_CASE("A silicone cell under small end loads is the section's EA and EI", "[cell]") {
   TcaSceneSpec spec = thesis_cell_spec();
   spec.ring_material = spec.tube_material;  // one material: a prism with three bores
+  spec.chamber_pressure_kPa = {0, 0, 0};
   const int ring = 15;
   const double z = spec.design.actuator.ring_centre_z(ring);
   // A and I about the 3CA axis (the centroid, by the section's three-fold symmetry) from the
@@ -69,6 +57,14 @@ TEST_CASE("A silicone cell under small end loads is the section's EA and EI", "[
   // The tangent's compliances at the loaded states: the same beam.
   CHECK(s.axial_compliance_per_N * E * A == Approx(1).epsilon(0.01));
   CHECK(b.bending_compliance_per_Nmm2 * E * I == Approx(1).epsilon(0.01));
+  // A moment about x turns out of the mirror plane: the full cell, the same I (three-fold symmetry).
+  CellEndLoad across;
+  across.moment_Nmm = Eigen::Vector2d(1e-3 * E * I / 10.0, 0);
+  const TcaCellResult full = run_tca_cell(spec, ring, across);
+  REQUIRE(full.path.outcome == PathOutcome::completed);
+  CHECK_FALSE(full.model.half);
+  CHECK(full.states.back().curvature_per_mm == Approx(1e-4).epsilon(0.01));
+  CHECK(full.states.back().bending_compliance_per_Nmm2 * E * I == Approx(1).epsilon(0.01));
   CHECK(s.plane_gap_mm < 2e-3 * (s.stretch - 1) * stretched.pitch_mm);  // the penalty holds the plane to ~10⁻³
 }
 

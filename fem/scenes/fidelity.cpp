@@ -41,6 +41,12 @@ FidelityLadder rra_ladder() {
 // and the 90° pressure:
 // - the rod: 21.0 % (37.40° against 47.36° at 150 kPa), +6.9 % at 90° (297.2 kPa); on the main job's
 //   optimised designs it is 22-48 % off (README, "Where the rod's error comes from");
+// - the cell rod (fem/reduced/cell_rod.hpp) on cells about rings 1, 15 and 30, each Hex20/P1 at 27
+//   points with level 4's layers (8,943 dofs, ~17 s each to 300 kPa, both threads, idle): +3.0 % at
+//   60 kPa (16.25° against 15.78°), +2.4 % at 90 kPa, within 1.9 % from 120 kPa on (−1.2 % at 300 kPa);
+//   90° at 280.6 kPa (+0.9 %); its sag under its weight −3.43° against −3.36°. Without gravity against
+//   the same mesh run weightless: +2.6 % at 60 kPa to −0.8 % at 300 kPa. `bench_tca_cell
+//   configs/convergence/tca_thesis_300kPa.json --axial-level 4 --compare <reference curve.csv>`;
 // - Hex20/P1 at 2×2×2 points, level 1: +0.85 % at 60 kPa, within 0.6 % above it; 90° at 278.77 kPa
 //   (+0.3 %). A cancellation: across the section the 2×2×2 rule is stiff, along the axis soft, and the
 //   two level-1 errors nearly cancel (32 mm cut, README "One direction at a time"); 202 s to the
@@ -57,6 +63,8 @@ FidelityLadder tca_ladder() {
           {{"reduced rod, 17 nodes", true, 0, 0, 21.0,
             "bending angle along the curve (worst point; 90° pressure: 6.9 %); on other designs up to 48 % (README)", 0.05,
             51},
+           {"cell rod: 3 ring-pitch cells (3D, level 4 layers)", true, 1, 2, 3.0,
+            "bending along the curve (90° pressure: 0.9 %)", 50, 8943, true, false, 4, true},
            {"3D Hex20/P1 at 2x2x2 Gauss points, level 1", false, 1, 2, 0.85,
             "bending along the curve (90° pressure: 0.3 %)", 202, 43992, true, true},
            {"3D Hex20/P1, level 1, layers of level 4", false, 1, 2, 0, "reference", 429, 173574, true, false, 4}}};

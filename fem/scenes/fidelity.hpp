@@ -30,6 +30,9 @@ struct ModelLevel {
   bool serendipity = false;       // 3D: Hex20 instead of Hex27 (element_order 2)
   bool reduced_integration = false;  // 3D Hex20 at 2×2×2 Gauss points
   int axial_level = 0;            // 3D: element layers along the axis as at this level (mesh.axial_level); 0: mesh_level
+  /// With `reduced`: the cell rod (fem/reduced/cell_rod.hpp), whose ring-pitch cells are 3D
+  /// models of the mesh settings above, instead of the fibre-section rod.
+  bool cell_rod = false;
 };
 
 struct FidelityLadder {

@@ -319,7 +319,8 @@ void apply_fidelity(SceneConfig& config, double target_error_percent, const std:
   config.selection = select_model(config.scene, target_error_percent);
   config.selection->reason = asked + ": " + config.selection->reason;
   config.reduced = config.selection->level.reduced;
-  if (!config.reduced) {
+  config.cell_rod = config.selection->level.cell_rod;
+  if (!config.reduced || config.cell_rod) {
     config.mesh_level() = config.selection->level.mesh_level;
     config.tca.axial_level = config.spl.axial_level = config.selection->level.axial_level;
     config.element_order() = config.selection->level.element_order;

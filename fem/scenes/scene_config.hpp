@@ -31,6 +31,7 @@ struct SceneConfig {
   /// model.fidelity / model.target_error_percent: the level the fidelity ladder chose, and why.
   std::optional<ModelSelection> selection;
   bool reduced = false;  // the chosen level is the reduced (rod) model
+  bool cell_rod = false;  // ... the cell rod (with `reduced`; its cells take the mesh settings)
   int& mesh_level() { return scene == "tca" ? tca.mesh_level : scene == "spl" ? spl.mesh_level : rra.mesh_level; }
   int& element_order() { return scene == "tca" ? tca.element_order : scene == "spl" ? spl.element_order : rra.element_order; }
   /// The level whose element layers the 3D mesh gets (mesh.axial_level, else mesh.level); the RRA's mesh.level.

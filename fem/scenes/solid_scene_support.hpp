@@ -14,6 +14,7 @@
 #include "fem/forms/elastic_form.hpp"
 #include "fem/materials/material.hpp"
 #include "fem/mesh/mesh.hpp"
+#include "fem/mesh/tca_mesher.hpp"
 
 namespace softarm::fem {
 
@@ -25,6 +26,20 @@ struct ModelChoice {
   int mirror_chamber = 0;          // 1–3 when half (the same in every segment)
   double frame_angle_rad = 0;      // solver frame = user frame rotated by −this about z
 };
+
+/// The mesh options of a 3D scene spec (its mesh level, axial level, element order and
+/// serendipity) on `model`: half or full, the mirror chamber on +x of the solver frame.
+template <class SceneSpec>
+SolidMeshOptions solid_mesh_options(const SceneSpec& spec, const ModelChoice& model) {
+  SolidMeshOptions options;
+  options.level = spec.mesh_level;
+  options.axial_level = spec.axial_level;
+  options.order = spec.element_order;
+  options.serendipity = spec.serendipity;
+  options.half = model.half;
+  options.first_axis_angle_rad = -model.frame_angle_rad;
+  return options;
+}
 
 /// A half model on the plane through the arm's axis and chamber k (k = 1..3, axes at
 /// (k − 1)·120°, the same in every segment) when, in every segment, the other two

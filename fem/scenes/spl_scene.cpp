@@ -36,14 +36,7 @@ SplResult run_spl_scene(const SplSceneSpec& spec, const std::function<void(const
   SplResult out;
   out.model = choose_spl_model(spec);
   const double theta = out.model.frame_angle_rad;
-  SolidMeshOptions options;
-  options.level = spec.mesh_level;
-  options.axial_level = spec.axial_level;
-  options.order = spec.element_order;
-  options.serendipity = spec.serendipity;
-  options.half = out.model.half;
-  options.first_axis_angle_rad = -theta;
-  Mesh mesh = mesh_spl(spec.design, options);
+  Mesh mesh = mesh_spl(spec.design, solid_mesh_options(spec, out.model));
   out.timings.mesh_s = since(t_start);
 
   const auto t_setup = Clock::now();

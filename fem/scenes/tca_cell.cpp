@@ -40,14 +40,7 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
     }
   }
   const double theta = out.model.frame_angle_rad;
-  SolidMeshOptions options;
-  options.level = spec.mesh_level;
-  options.axial_level = spec.axial_level;
-  options.order = spec.element_order;
-  options.serendipity = spec.serendipity;
-  options.half = out.model.half;
-  options.first_axis_angle_rad = -theta;
-  const Mesh mesh = mesh_tca_cell(spec.design, ring, options);
+  const Mesh mesh = mesh_tca_cell(spec.design, ring, solid_mesh_options(spec, out.model));
   const std::vector<Material> materials = tca_part_materials(spec);
 
   // Positions: the mesh's nodes, then the pilot (a, b, c) at the origin.
@@ -56,8 +49,8 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
   X.head(3 * pilot) = flattened_positions(mesh);
   X.tail<3>().setZero();
   DirichletConstraints bc;
-  std::vector<char> fixed_z(mesh.num_nodes(), 0), on_symmetry(mesh.num_nodes(), 0);
-  for (int n : mesh.node_sets.at("bottom")) bc.fix(3 * n + 2), fixed_z[n] = 1;
+  std::vector<char> on_symmetry(mesh.num_nodes(), 0);
+  for (int n : mesh.node_sets.at("bottom")) bc.fix(3 * n + 2);
   if (const auto it = mesh.node_sets.find("symmetry"); it != mesh.node_sets.end())
     for (int n : it->second) bc.fix(3 * n + 1), on_symmetry[n] = 1;
   // In-plane rigid motion of the bottom face: the node nearest the axis holds x (and y in a
@@ -112,23 +105,27 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
   }
   const double L = out.pitch_mm;
   double kg = 0;
-  for (const auto& [part, m] : part_masses_kg(mesh, materials, 1 / share)) kg += m;
+  for (const auto& part : part_masses_kg(mesh, materials, 1 / share)) kg += part.second;
   out.mass_per_length_kg_per_mm = kg / L;
-  // The end face's compliance from the tangent: K z = e_d for the pilot's dofs a and b (the
-  // slope in the bend plane: the mirror plane, or the pressures' bend direction, else x).
-  const int bend_dof = std::abs(bend.y()) > std::abs(bend.x()) ? 3 * pilot + 2 : 3 * pilot + 1;
+  // The direction the curvature is signed by: the pressures' bend, else the end moment's, else x.
+  Eigen::Vector2d d = bend.norm() > 0 ? bend : Eigen::Vector2d(m.y(), -m.x());
+  d = d.norm() > 0 ? d.normalized() : Eigen::Vector2d::UnitX();
+  // The end face's compliance from the tangent at a state: uᵀK⁻¹u for a unit generalised force
+  // u on a (the axial force), and on (b, c) along d (a moment about the axis normal to d:
+  // turning the face towards d lowers the plane along d). dφ = uᵀK⁻¹u·share·dM, κ = φ/L;
+  // dλ = uᵀK⁻¹u·share·dN/L. In a half model d lies in the mirror plane and c is fixed.
   const auto add_compliance = [&](TcaCellState& c, const Vector& xs) {
     const Evaluation e = problem.evaluate(xs, false, true);
     LinearSolver solver;
     if (solver.factorize(e.hessian) != LinearSolver::Status::positive_definite) return;
-    const auto response = [&](int dof) {
-      Eigen::VectorXd unit = Eigen::VectorXd::Zero(problem.num_dofs());
-      unit[dof] = 1.0;
-      return solver.solve(unit)[dof];
+    const auto response = [&](double on_a, double on_b, double on_c) {
+      Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.num_dofs());
+      u.segment<3>(3 * pilot) << on_a, on_b, on_c;
+      problem.zero_prescribed(u);
+      return u.dot(solver.solve(u));
     };
-    // A unit generalised force on b is −M_y (c: M_x): dφ = C·share·dM, κ = φ/L; on a, N: dλ = C·share·dN/L.
-    c.bending_compliance_per_Nmm2 = response(bend_dof) * share / L;
-    c.axial_compliance_per_N = response(3 * pilot) * share / L;
+    c.bending_compliance_per_Nmm2 = response(0, d.x(), d.y()) * share / L;
+    c.axial_compliance_per_N = response(1, 0, 0) * share / L;
   };
   const auto state_of = [&](double pressure_kPa, double volume_mm3, const Vector& xs) {
     TcaCellState c;
@@ -137,7 +134,7 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
     c.stretch = 1 + a / L;
     const Eigen::Vector2d towards(-b, -cy);  // the end face's normal leans this way
     c.curvature_per_mm = std::atan(towards.norm()) / L;
-    if (towards.dot(bend.norm() > 0 ? bend : Eigen::Vector2d(m.y(), -m.x())) < 0) c.curvature_per_mm = -c.curvature_per_mm;
+    if (towards.dot(d) < 0) c.curvature_per_mm = -c.curvature_per_mm;
     c.chamber_volume_mm3 = volume_mm3 / share;
     c.plane_gap_mm = plane->max_gap(xs);
     return c;
@@ -176,6 +173,85 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
     });
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+CellTable cell_table(const TcaCellResult& cell) {
+  CellTable t;
+  t.z_mm = cell.ring_centre_z_mm;
+  t.mass_per_length_kg_per_mm = cell.mass_per_length_kg_per_mm;
+  for (const TcaCellState& s : cell.states)
+    if (s.is_output && s.bending_compliance_per_Nmm2 > 0) {
+      t.pressure_kPa.push_back(s.pressure_kPa);
+      t.stretch.push_back(s.stretch);
+      t.curvature_per_mm.push_back(s.curvature_per_mm);
+      t.bending_compliance_per_Nmm2.push_back(s.bending_compliance_per_Nmm2);
+    }
+  return t;
+}
+
+CellRodSpec tca_cell_rod(const TcaSceneSpec& spec, const std::vector<TcaCellResult>& cells) {
+  CellRodSpec rod;
+  rod.length_mm = spec.design.actuator.length_mm;
+  rod.cap_mm = spec.design.actuator.end_cap_thickness_mm;
+  for (const auto& c : cells) rod.cells.push_back(cell_table(c));
+  // The bend direction (tca_scene.cpp: away from the pressurised chambers), user frame.
+  Eigen::Vector3d bend = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k)
+    bend -= spec.chamber_pressure_kPa[k] * Eigen::Vector3d(std::cos(k * 2 * kPi / 3), std::sin(k * 2 * kPi / 3), 0);
+  if (bend.norm() > 0) bend.normalize();
+  rod.gravity_along_bend_m_s2 = spec.gravity_m_s2.dot(bend);
+  rod.gravity_along_axis_m_s2 = spec.gravity_m_s2.z();
+  return rod;
+}
+
+CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
+  CellRodTcaResult out;
+  const int n = spec.design.actuator.ring_count;
+  if (n < 1) {
+    out.diagnosis = "the cell rod needs rings: a 3CA without them has no ring pitch (and barely bends)";
+    return out;
+  }
+  for (int ring : {1, (n + 1) / 2, n})
+    if (out.rings.empty() || out.rings.back() != ring) out.rings.push_back(ring);
+  std::vector<TcaCellResult> cells;
+  for (int ring : out.rings) {
+    cells.push_back(run_tca_cell(spec, ring));
+    out.cell_seconds += cells.back().seconds;
+    out.cell_dofs = cells.back().dofs;
+  }
+  const CellRodSpec rod = tca_cell_rod(spec, cells);
+  // The rod is planar: gravity must lie in the plane of the axis and the bend direction.
+  Eigen::Vector3d bend = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k)
+    bend -= spec.chamber_pressure_kPa[k] * Eigen::Vector3d(std::cos(k * 2 * kPi / 3), std::sin(k * 2 * kPi / 3), 0);
+  const Eigen::Vector3d off_plane = spec.gravity_m_s2 - spec.gravity_m_s2.z() * Eigen::Vector3d::UnitZ() -
+                                    rod.gravity_along_bend_m_s2 * (bend.norm() > 0 ? bend.normalized() : bend);
+  if (off_plane.norm() > 1e-9 * (1 + spec.gravity_m_s2.norm())) {
+    out.diagnosis = "the cell rod is planar and gravity leaves the plane of the axis and the bend; use the 3D model";
+    return out;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<double> pressures = {0.0};
+  pressures.insert(pressures.end(), spec.output_pressures_kPa.begin(), spec.output_pressures_kPa.end());
+  std::vector<TcaState> states;
+  for (double p : pressures) {
+    const CellRodState s = solve_cell_rod(rod, p);
+    if (!s.ok) {
+      out.diagnosis = s.diagnosis;
+      for (const auto& c : cells)
+        if (c.path.outcome != PathOutcome::completed) out.diagnosis += " (" + c.path.diagnosis + ")";
+      break;
+    }
+    out.curve.push_back(s);
+    TcaState t;
+    t.pressure_kPa = s.pressure_kPa;
+    t.bending_angle_deg = s.bending_angle_deg;
+    states.push_back(t);
+  }
+  out.rod_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.converged = out.curve.size() == pressures.size();
+  out.target_pressure_kPa = pressure_at_bending(states, spec.target_bending_deg);
   return out;
 }
 

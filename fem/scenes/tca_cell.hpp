@@ -17,8 +17,11 @@
 // This is the calibration a rod (fem/reduced) can take from the FEM instead of its
 // fibre section: the 3CA's bending angle is ∫ κ₀ dz along its ringed length plus
 // what the caps and the clamp add, which the cell leaves out by construction.
+#include <optional>
+#include <string>
 #include <vector>
 
+#include "fem/reduced/cell_rod.hpp"
 #include "fem/scenes/tca_scene.hpp"
 
 namespace softarm::fem {
@@ -59,5 +62,26 @@ struct CellEndLoad {
 /// Runs the cell about `ring` (1..ring_count) of spec.design with the spec's materials,
 /// mesh, chamber pressures, outputs and solver settings; spec.gravity is ignored.
 TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad& end_load = {});
+
+/// A cell's output states as a table for the cell rod (cell_rod.hpp): those with a
+/// positive definite tangent, in order.
+CellTable cell_table(const TcaCellResult& cell);
+
+/// The cell rod of spec's 3CA from its cells (cell_rod.hpp): length, caps, and the spec's
+/// gravity resolved along the pressures' bend direction and the axis (user frame).
+CellRodSpec tca_cell_rod(const TcaSceneSpec& spec, const std::vector<TcaCellResult>& cells);
+
+/// The 3CA scene on the cell rod: cells about the first, middle and last rings (fewer when
+/// the design has fewer), the rod evaluated at rest and at every output pressure.
+struct CellRodTcaResult {
+  std::vector<int> rings;
+  std::vector<CellRodState> curve;             // rest, then the outputs the rod reached
+  std::optional<double> target_pressure_kPa;   // where the bending reaches spec.target_bending_deg
+  bool converged = false;                      // every output reached
+  std::string diagnosis;                       // why not
+  int cell_dofs = 0;                           // of one cell
+  double cell_seconds = 0, rod_seconds = 0;
+};
+CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec);
 
 }  // namespace softarm::fem

@@ -46,14 +46,7 @@ std::optional<double> pressure_at_bending(const std::vector<TcaState>& s, double
 
 Mesh tca_mesh(const TcaSceneSpec& spec, const ModelChoice& model) {
   validate(spec.design);
-  SolidMeshOptions options;
-  options.level = spec.mesh_level;
-  options.axial_level = spec.axial_level;
-  options.order = spec.element_order;
-  options.serendipity = spec.serendipity;
-  options.half = model.half;
-  options.first_axis_angle_rad = -model.frame_angle_rad;  // the mirror chamber on +x in the solver frame
-  return mesh_tca(spec.design, options);
+  return mesh_tca(spec.design, solid_mesh_options(spec, model));
 }
 
 std::vector<Material> tca_part_materials(const TcaSceneSpec& spec) {
