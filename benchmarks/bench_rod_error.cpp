@@ -15,17 +15,26 @@
 // give the ratio 3D/rod per design: check and correct's zeroth-order factor
 // carries from one design to the next only as far as that ratio is constant.
 //
-//   build/benchmarks/bench_rod_error [--with-3d] [--design N] [--stiffness]
+//   build/benchmarks/bench_rod_error [--with-3d] [--design N] [--stiffness] [--cell-rod]
 //
 // --design N (1-5) runs only the N-th design; with --with-3d it also prints the
 // 3D path's bending at every output beside the rod's at the same pressure, so
 // the error can be followed along the curve, not only at its end.
+//
+// --cell-rod bends each distal segment by the cell rod (fem/reduced/cell_rod.hpp; cells
+// about its first, middle and last rings, Hex20/P1 at 27 points with level 4's layers, as the
+// fidelity ladder's rung) along 8 steps to the recorded 3D pressure (about a minute per design).
+//
+// --cell-rod --reference also runs the whole segment on the fidelity ladder's reference mesh
+// (Hex20/P1 at 27 points, level 1 with level 4's layers; ~10 minutes per design) to the same
+// pressure, for the cell rod and the 3D check's 8-point mesh to be measured against.
 //
 // --stiffness measures what the confined rod still misses (README): each
 // design's distal segment under ten times its weight along its axis, by the 3D
 // model (about a minute each) and by both rods; k = rod/3D stretch; then the
 // confined rod with every fibre stiffened by its k, at the recorded 3D pressure.
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -38,6 +47,7 @@
 #include "fem/core/json_reader.hpp"
 #include "fem/reduced/arm_rod.hpp"
 #include "fem/reduced/rra_calibration.hpp"
+#include "fem/scenes/tca_cell.hpp"
 #include "objectives/solid_segment_check.hpp"
 
 using namespace softarm;
@@ -107,15 +117,31 @@ fem::RraCalibration lone_rra(const objectives::ArmCandidate& c, double p_kPa) {
   for (int k = 1; k <= 8; ++k) spec.path.output_pressures_kPa.push_back(p_kPa * k / 8);
   return fem::calibrate_rra(spec);
 }
+
+// --cell-rod: the distal segment's bending scene (as the 3D check's) on the fidelity ladder's
+// reference mesh settings (Hex20/P1 at 27 points, level 1, level 4's layers), 8 steps to p_kPa.
+fem::TcaSceneSpec reference_mesh_scene(const objectives::ArmCandidate& c, double p_kPa) {
+  fem::TcaSceneSpec spec = objectives::solid_segment_scene(c, 3);
+  spec.serendipity = true;
+  spec.integration = fem::ElementIntegration::full;
+  spec.mesh_level = 1;
+  spec.axial_level = 4;
+  spec.chamber_pressure_kPa = {0.0, p_kPa, p_kPa};
+  spec.output_pressures_kPa.clear();
+  for (int k = 1; k <= 8; ++k) spec.output_pressures_kPa.push_back(p_kPa * k / 8);
+  return spec;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
-  bool with_3d = false, stiffness = false;
+  bool with_3d = false, stiffness = false, cell_rod = false, reference = false;
   std::size_t only = 0;  // 1-based; 0: every design
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--with-3d") == 0) with_3d = true;
     else if (std::strcmp(argv[i], "--design") == 0 && i + 1 < argc) only = std::stoul(argv[++i]);
     else if (std::strcmp(argv[i], "--stiffness") == 0) stiffness = true;
+    else if (std::strcmp(argv[i], "--cell-rod") == 0) cell_rod = true;
+    else if (std::strcmp(argv[i], "--reference") == 0) reference = true;
   }
   const engine::DesignConfig config = engine::read_design_config(
       fem::load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/thesis_requirements.json"));
@@ -127,6 +153,41 @@ int main(int argc, char** argv) {
       {"round 0, 1.364 kg (DS30/DS20)", {0.350108, 0.180914, 35, 0.343385, 4.37683, 0.523542, 0, 1}, 254.5, 75.8},
       {"round 1, 0.971 kg (DS20/DS20)", {0.336163, 0.167693, 21, 0.263945, 3.92867, 0.695315, 1, 1}, 344.7, 78.4},
       {"1.458 kg, other machine (DS30/DS20)", {0.341, 0.246, 34, 0.363, 3.71, 0.485, 0, 1}, 305.8, 84.4}};
+  if (cell_rod) {
+    std::printf("%-38s %8s %10s %12s %10s %8s %10s\n", "design (distal segment)", "p (kPa)", "rod (deg)",
+                "cell rod", "3D (deg)", "error", "cells (s)");
+    for (std::size_t n = 0; n < designs.size(); ++n) {
+      if (only != 0 && n + 1 != only) continue;
+      const Design& d = designs[n];
+      const objectives::ArmCandidate c = engine::make_candidate(config, d.x);
+      const fem::TcaSceneSpec spec = reference_mesh_scene(c, d.pressure_kPa);
+      const fem::CellRodTcaResult r = fem::run_cell_rod_tca(spec);
+      const double rod = rod_bending_deg(c, d.pressure_kPa, nullptr);
+      if (!r.converged) {
+        std::printf("%-38s %8.1f %10.2f  stopped: %s\n", d.name, d.pressure_kPa, rod, r.diagnosis.c_str());
+        continue;
+      }
+      const double bend = r.curve.back().bending_angle_deg;
+      std::printf("%-38s %8.1f %10.2f %12.2f %10.1f %+7.1f%% %10.1f\n", d.name, d.pressure_kPa, rod, bend,
+                  d.recorded_3d_deg, 100 * (bend / d.recorded_3d_deg - 1), r.cell_seconds);
+      std::fflush(stdout);
+      if (!reference) continue;
+      const fem::TcaResult full = fem::run_tca_scene(spec);
+      for (std::size_t k = 0; k < full.curve.size(); ++k) {
+        const auto& s3 = full.curve[k];
+        const fem::CellRodState* cr = nullptr;
+        for (const auto& s : r.curve)
+          if (std::abs(s.pressure_kPa - s3.pressure_kPa) < 1e-6) cr = &s;
+        std::printf("  reference %7.1f kPa %8.2f deg  cell rod %8.2f deg (%+5.1f %%)\n", s3.pressure_kPa,
+                    s3.bending_angle_deg, cr ? cr->bending_angle_deg : NAN,
+                    cr ? 100 * (cr->bending_angle_deg / s3.bending_angle_deg - 1) : NAN);
+      }
+      std::printf("  reference: %s, %d dofs, %.0f s%s%s\n", to_string(full.path.outcome), full.dofs,
+                  full.timings.total_s, full.path.diagnosis.empty() ? "" : ": ", full.path.diagnosis.c_str());
+      std::fflush(stdout);
+    }
+    return 0;
+  }
   if (stiffness) {
     std::printf("%-38s %11s %11s %11s %8s %8s %18s %10s\n", "design (distal segment), 10 g axial", "3D (mm)",
                 "rod (mm)", "confined", "k rod", "k conf", "stiffened confined", "3D (deg)");

@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "fem/scenes/tca_cell.hpp"
 #include "fem/scenes/tca_scene.hpp"
 
 namespace softarm::objectives {
@@ -82,9 +83,36 @@ fem::TcaSceneSpec solid_segment_scene(const ArmCandidate& c, int segment, int me
   return spec;
 }
 
+namespace {
+/// The check on the cell rod: the same load, the cells on the ladder's rung (fidelity.cpp).
+SolidSegmentCheck check_on_cell_rod(fem::TcaSceneSpec spec, int segment, const SegmentMeasures& rod,
+                                    const std::function<void(double, double)>& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  spec.integration = fem::ElementIntegration::full;
+  spec.mesh_level = 1;
+  spec.axial_level = 4;
+  const fem::CellRodTcaResult r = fem::run_cell_rod_tca(spec);
+  if (progress)
+    for (const auto& state : r.curve) progress(state.pressure_kPa, state.bending_angle_deg);
+  SolidSegmentCheck out;
+  out.segment = segment;
+  out.element = "cell rod on ring-pitch cells, H2s/P1 at 27 points, level 1, layers of level 4";
+  out.dofs = r.cell_dofs;
+  out.reached_pressure_kPa = r.reached_pressure_kPa;
+  out.path = r.outcome;
+  out.outcome = r.outcome == fem::PathOutcome::completed ? "completed" : r.diagnosis;
+  out.bending_deg = r.curve.empty() ? 0.0 : r.curve.back().bending_angle_deg;
+  out.rod_bending_deg = bending_at_pressure(rod, out.reached_pressure_kPa);
+  out.pressure_for_target_kPa = r.target_pressure_kPa;
+  if (rod.pressure_for_target_kPa >= 0) out.rod_pressure_for_target_kPa = rod.pressure_for_target_kPa;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+}  // namespace
+
 SolidSegmentCheck check_segment_in_3d(const ArmCandidate& c, const EvaluationSettings& s, int segment,
                                       const SegmentMeasures& rod, int mesh_level,
-                                      const std::function<void(double, double)>& progress) {
+                                      const std::function<void(double, double)>& progress, SolidCheckModel model) {
   const auto t0 = std::chrono::steady_clock::now();
   fem::TcaSceneSpec spec = solid_segment_scene(c, segment, mesh_level);
   // The rod's load (arm_evaluation.cpp, bend_segment): chambers 2 and 3, gravity against the bend.
@@ -98,7 +126,7 @@ SolidSegmentCheck check_segment_in_3d(const ArmCandidate& c, const EvaluationSet
   spec.steps.initial_increment = 0.03;
   spec.steps.min_increment = 1e-3;
   spec.limit.volume_control_fraction = 1.0;
-
+  if (model == SolidCheckModel::cell_rod) return check_on_cell_rod(spec, segment, rod, progress);
   const fem::TcaResult r = fem::run_tca_scene(spec, [&](const fem::TcaState& state) {
     if (progress) progress(state.pressure_kPa, state.bending_angle_deg);
   });

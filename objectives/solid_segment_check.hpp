@@ -5,14 +5,17 @@
 // and 3 at the working pressure, gravity against the bend, top face clamped), so
 // the rod's bending of that segment can be compared with the 3D model's.
 //
-// The 3D model is Hex20/P1 at 2×2×2 Gauss points, mesh level 1, half model: on
-// the thesis 3CA it bends within 0.85 % of the fidelity ladder's reference (Hex20
-// with level 4's element layers) along the curve, 90° within 0.3 %, at a quarter
-// of its unknowns (README, "Layers to level 4"). That agreement is two level-1
-// errors cancelling (stiff across the section, soft along the axis), measured on
-// the thesis design only. A limit point (ballooning) before the working pressure
-// is a result: the check reports the bending at the largest pressure reached and
-// says so.
+// Two models (SolidCheckModel; the design config's check.solid_model):
+// - the cell rod (the default): ring-pitch cells of the segment, Hex20/P1 at 27 points with level
+//   4's element layers, under a planar rod (fem/scenes/tca_cell.hpp). Against the fidelity ladder's
+//   reference mesh (the whole segment, Hex20/P1 with level 4's layers) it is within 3.0 % along the
+//   thesis 3CA's curve and within 3.3 % along the main job's round-0 optimum's; on round 1's (Dragon
+//   Skin 20, thin rings) +7.9 % at the working pressure and −12 % below it (README, "The cell rod");
+// - the whole segment in 3D, Hex20/P1 at 2×2×2 Gauss points, mesh level 1, half model: within 0.85 %
+//   of the reference on the thesis 3CA by two level-1 errors cancelling, but 17 % short and ballooning
+//   early on the round-0 optimum, whose walls are thinner, and 16 % short on round 1's.
+// A limit point (ballooning) before the working pressure is a result: the check reports the bending
+// at the largest pressure reached and says so.
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -59,6 +62,14 @@ double bending_at_pressure(const SegmentMeasures& rod, double p_kPa);
 /// Hex20/P1 at 2×2×2 points, mesh `mesh_level`, with no load yet.
 fem::TcaSceneSpec solid_segment_scene(const ArmCandidate& candidate, int segment, int mesh_level = 1);
 
+/// The model a check bends its segment by.
+enum class SolidCheckModel {
+  cell_rod,      // the cell rod (fem/scenes/tca_cell.hpp): ring-pitch cells of Hex20/P1 at 27 points with
+                 // level 4's layers, the fidelity ladder's rung; within 3.3 % of the ladder's reference mesh on
+                 // the thesis 3CA and on the main job's round-0 optimum (README)
+  hex20_reduced  // the whole segment in 3D, Hex20/P1 at 2×2×2 points, level 1 (solid_segment_scene)
+};
+
 /// Bends segment `segment` (1–3) of `candidate` by the 3D FEM under the load of `settings`
 /// (working pressure, gravity, target bending, output steps) and compares it with `rod`, that
 /// segment's measures by the search's rod (ArmMeasures::segments[segment − 1]). `mesh_level` ≥ 1.
@@ -66,6 +77,7 @@ fem::TcaSceneSpec solid_segment_scene(const ArmCandidate& candidate, int segment
 /// `progress` (optional) is called with (pressure kPa, bending deg) at every output as the path goes.
 SolidSegmentCheck check_segment_in_3d(const ArmCandidate& candidate, const EvaluationSettings& settings, int segment,
                                       const SegmentMeasures& rod, int mesh_level = 1,
-                                      const std::function<void(double, double)>& progress = {});
+                                      const std::function<void(double, double)>& progress = {},
+                                      SolidCheckModel model = SolidCheckModel::hex20_reduced);
 
 }  // namespace softarm::objectives

@@ -116,6 +116,17 @@ TEST_CASE("bad requirements name the field", "[design]") {
     doc["check"]["solid_segment"] = 4;
     CHECK_THAT(error_field(doc), Catch::Contains("check.solid_segment"));
   }
+  SECTION("a check model softarm does not have") {
+    doc["check"]["solid_model"] = "hex27";
+    CHECK_THAT(error_field(doc), Catch::Contains("check.solid_model") && Catch::Contains("hex27"));
+  }
+}
+
+TEST_CASE("the design check's model: the cell rod unless the config asks for the 8-point 3D segment", "[design]") {
+  auto doc = thesis_requirements();
+  CHECK(engine::read_design_config(doc).solid_check_model == objectives::SolidCheckModel::cell_rod);
+  doc["check"]["solid_model"] = "hex20_2x2x2";
+  CHECK(engine::read_design_config(doc).solid_check_model == objectives::SolidCheckModel::hex20_reduced);
 }
 
 TEST_CASE("softarm design exits 2 naming the field of a bad requirements file", "[design][cli]") {

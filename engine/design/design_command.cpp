@@ -99,7 +99,8 @@ std::optional<objectives::SolidSegmentCheck> check_in_3d(const DesignConfig& con
     try {
       sc = objectives::check_segment_in_3d(
           make_candidate(config, x), config.check, n, rod_check.segments[static_cast<std::size_t>(n - 1)], 1,
-          [](double p, double deg) { std::cout << "  3D: " << fixed(p, 1) << " kPa, " << fixed(deg, 2) << " deg\n" << std::flush; });
+          [](double p, double deg) { std::cout << "  3D: " << fixed(p, 1) << " kPa, " << fixed(deg, 2) << " deg\n" << std::flush; },
+          config.solid_check_model);
       checkpoint.add(x, *sc);
     } catch (const std::exception& e) {  // the search's results stand; the check reports why it could not run
       std::cout << "3D check of segment " << n << " could not run: " << e.what() << "\n";

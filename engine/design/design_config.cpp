@@ -214,8 +214,17 @@ DesignConfig read_design_config(const nlohmann::json& document) {
     auto k = root.object("check", "fidelity of the final design's re-check");
     c.solid_check_segment = k.integer("solid_segment", 0, Range::closed(0, 3),
                                       "bend this segment (1 proximal … 3 distal) of the optimum by the 3D FEM "
-                                      "(Hex20 at 2x2x2 points, level 1; minutes) and report the rod's bending error "
-                                      "against it; 0: no 3D check");
+                                      "(check.solid_model) and report the rod's bending error against it; 0: no 3D "
+                                      "check");
+    const std::string solid_model = k.choice(
+        "solid_model", "cell_rod", {"cell_rod", "hex20_2x2x2"},
+        "the check's model: cell_rod, the cell rod on ring-pitch cells of Hex20/P1 at 27 points with level 4's layers "
+        "(~1 min; against the fidelity ladder's reference mesh: within 3.3 % on the thesis 3CA and the round-0 "
+        "optimum, +7.9 % on round 1's at the working pressure), or hex20_2x2x2, the whole segment by Hex20/P1 at "
+        "2x2x2 points, level 1 (4-8 min; 0.85 % on the thesis 3CA by a cancellation, 17 and 16 % short on the "
+        "round-0 and round-1 optima)");
+    c.solid_check_model = solid_model == "cell_rod" ? objectives::SolidCheckModel::cell_rod
+                                                    : objectives::SolidCheckModel::hex20_reduced;
     c.solid_corrections = k.integer("corrections", 0, Range::closed(0, 3),
                                     "check and correct: while the 3D check finds a requirement not met, correct the "
                                     "search model by it (bending and burst, multiplicative) and search again from the "

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/optimiser/optimiser.hpp"
+#include "objectives/solid_segment_check.hpp"
 #include "objectives/arm_evaluation.hpp"
 
 namespace softarm::engine {
@@ -56,6 +57,7 @@ struct DesignConfig {
   objectives::EvaluationSettings check;     // the final design's re-check (higher fidelity)
   int solid_check_segment = 0;              // 1–3: that segment of the optimum also by the 3D FEM; 0: none
   int solid_corrections = 0;                // searches again with the search model corrected by the 3D check
+  objectives::SolidCheckModel solid_check_model = objectives::SolidCheckModel::cell_rod;  // check.solid_model
                                             // (solid_correction.hpp), at most this many times
   double search_margin = 0.01;              // constraints on the search model: g + margin ≤ 0
   optimise::Options optimiser;

@@ -251,6 +251,11 @@ CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
   }
   out.rod_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.converged = out.curve.size() == pressures.size();
+  out.reached_pressure_kPa = out.curve.empty() ? 0.0 : out.curve.back().pressure_kPa;
+  for (const auto& c : cells)
+    if (c.path.outcome == PathOutcome::limit_point || (c.path.outcome == PathOutcome::stalled && out.outcome == PathOutcome::completed))
+      out.outcome = c.path.outcome;
+  if (out.converged) out.outcome = PathOutcome::completed;
   out.target_pressure_kPa = pressure_at_bending(states, spec.target_bending_deg);
   return out;
 }
