@@ -68,7 +68,7 @@ TEST_CASE("A silicone cell under small end loads is the section's EA and EI", "[
   CHECK(s.plane_gap_mm < 2e-3 * (s.stretch - 1) * stretched.pitch_mm);  // the penalty holds the plane to ~10⁻³
 }
 
-TEST_CASE("Rigid rings make a pressurised cell stretch and bend; silicone ones barely", "[cell]") {
+TEST_CASE("Rigid rings make a pressurised cell stretch and bend, silicone ones barely", "[cell]") {
   TcaSceneSpec spec = thesis_cell_spec();
   spec.chamber_pressure_kPa = {0, 20, 20};
   spec.output_pressures_kPa = {20};

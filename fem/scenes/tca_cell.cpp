@@ -12,7 +12,6 @@
 
 namespace softarm::fem {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 // The plane's penalty per node: this many times the stiffest silicone's initial shear
 // modulus times 1 mm (plane_face_form.hpp).
 constexpr double kPlanePenaltyRatio = 1e4;
@@ -97,12 +96,8 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
   problem.finalize();
   out.dofs = problem.num_dofs();
 
-  // The scene bends away from its pressurised chambers (tca_scene.cpp): −Σ p_k e_k.
-  Eigen::Vector2d bend = Eigen::Vector2d::Zero();
-  for (int k = 0; k < 3; ++k) {
-    const double angle = k * 2 * kPi / 3 - theta;
-    bend -= spec.chamber_pressure_kPa[k] * Eigen::Vector2d(std::cos(angle), std::sin(angle));
-  }
+  // The scene bends away from its pressurised chambers (tca_bend_direction), solver frame.
+  const Eigen::Vector2d bend = (rotation_about_z(-theta) * tca_bend_direction(spec.chamber_pressure_kPa)).head<2>();
   const double L = out.pitch_mm;
   double kg = 0;
   for (const auto& part : part_masses_kg(mesh, materials, 1 / share)) kg += part.second;
@@ -195,10 +190,7 @@ CellRodSpec tca_cell_rod(const TcaSceneSpec& spec, const std::vector<TcaCellResu
   rod.length_mm = spec.design.actuator.length_mm;
   rod.cap_mm = spec.design.actuator.end_cap_thickness_mm;
   for (const auto& c : cells) rod.cells.push_back(cell_table(c));
-  // The bend direction (tca_scene.cpp: away from the pressurised chambers), user frame.
-  Eigen::Vector3d bend = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 3; ++k)
-    bend -= spec.chamber_pressure_kPa[k] * Eigen::Vector3d(std::cos(k * 2 * kPi / 3), std::sin(k * 2 * kPi / 3), 0);
+  Eigen::Vector3d bend = tca_bend_direction(spec.chamber_pressure_kPa);
   if (bend.norm() > 0) bend.normalize();
   rod.gravity_along_bend_m_s2 = spec.gravity_m_s2.dot(bend);
   rod.gravity_along_axis_m_s2 = spec.gravity_m_s2.z();
@@ -208,6 +200,7 @@ CellRodSpec tca_cell_rod(const TcaSceneSpec& spec, const std::vector<TcaCellResu
 CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
   CellRodTcaResult out;
   const int n = spec.design.actuator.ring_count;
+  out.outcome = PathOutcome::stalled;  // until the rod has reached every output
   if (n < 1) {
     out.diagnosis = "the cell rod needs rings: a 3CA without them has no ring pitch (and barely bends)";
     return out;
@@ -222,9 +215,7 @@ CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
   }
   const CellRodSpec rod = tca_cell_rod(spec, cells);
   // The rod is planar: gravity must lie in the plane of the axis and the bend direction.
-  Eigen::Vector3d bend = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 3; ++k)
-    bend -= spec.chamber_pressure_kPa[k] * Eigen::Vector3d(std::cos(k * 2 * kPi / 3), std::sin(k * 2 * kPi / 3), 0);
+  const Eigen::Vector3d bend = tca_bend_direction(spec.chamber_pressure_kPa);
   const Eigen::Vector3d off_plane = spec.gravity_m_s2 - spec.gravity_m_s2.z() * Eigen::Vector3d::UnitZ() -
                                     rod.gravity_along_bend_m_s2 * (bend.norm() > 0 ? bend.normalized() : bend);
   if (off_plane.norm() > 1e-9 * (1 + spec.gravity_m_s2.norm())) {
@@ -252,10 +243,10 @@ CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
   out.rod_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.converged = out.curve.size() == pressures.size();
   out.reached_pressure_kPa = out.curve.empty() ? 0.0 : out.curve.back().pressure_kPa;
-  for (const auto& c : cells)
-    if (c.path.outcome == PathOutcome::limit_point || (c.path.outcome == PathOutcome::stalled && out.outcome == PathOutcome::completed))
-      out.outcome = c.path.outcome;
+  // Short of the last output: a cell's limit point is a limit point of the rod, else a stall.
   if (out.converged) out.outcome = PathOutcome::completed;
+  for (const auto& c : cells)
+    if (!out.converged && c.path.outcome == PathOutcome::limit_point) out.outcome = PathOutcome::limit_point;
   out.target_pressure_kPa = pressure_at_bending(states, spec.target_bending_deg);
   return out;
 }

@@ -53,6 +53,12 @@ std::vector<Material> tca_part_materials(const TcaSceneSpec& spec) {
   return {spec.tube_material, spec.ring_material, spec.sheath_material};
 }
 
+Eigen::Vector3d tca_bend_direction(const std::array<double, 3>& p) {
+  Eigen::Vector3d bend = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) bend -= p[k] * Eigen::Vector3d(std::cos(k * 2 * kPi / 3), std::sin(k * 2 * kPi / 3), 0);
+  return bend;
+}
+
 Eigen::Vector3d tca_solver_gravity(const TcaSceneSpec& spec, const ModelChoice& model) {
   return rotation_about_z(-model.frame_angle_rad) * spec.gravity_m_s2;
 }
@@ -101,11 +107,7 @@ TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
   // The 3CA bends away from its pressurised chambers: towards −Σ p_k e_k (e_k the
   // chambers' axis directions, solver frame). The angle is signed by it, so a sag
   // under gravity against the bend reads negative.
-  Eigen::Vector3d bend_direction = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 3; ++k) {
-    const double angle = k * 2 * kPi / 3 - theta;
-    bend_direction -= spec.chamber_pressure_kPa[k] * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0);
-  }
+  const Eigen::Vector3d bend_direction = rotation_about_z(-theta) * tca_bend_direction(spec.chamber_pressure_kPa);
   const auto state_of = [&](const PressureState& s, const Vector& x) {
     const FaceMeasure now = face(x);
     TcaState t;

@@ -96,6 +96,11 @@ ModelChoice choose_tca_model(const TcaSceneSpec& spec);
 /// and the material of each of its parts ("tube", "rings", "sheath").
 Mesh tca_mesh(const TcaSceneSpec& spec, const ModelChoice& model);
 std::vector<Material> tca_part_materials(const TcaSceneSpec& spec);
+/// The side the 3CA bends to under its chamber pressures, user frame (unnormalised; zero when
+/// no chamber or all alike are pressurised): away from them, −Σ p_k e_k with e_k chamber k's
+/// axis direction at (k − 1)·120°.
+Eigen::Vector3d tca_bend_direction(const std::array<double, 3>& chamber_pressure_kPa);
+
 /// Gravity in the solver frame of `model`.
 Eigen::Vector3d tca_solver_gravity(const TcaSceneSpec& spec, const ModelChoice& model);
 
