@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "fem/forms/plane_face_form.hpp"
+#include "fem/scenes/fidelity.hpp"
 #include "fem/mesh/tca_mesher.hpp"
 #include "fem/solver/linear_solver.hpp"
 #include "fem/solver/load_stepper.hpp"
@@ -109,9 +110,10 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
   // u on a (the axial force), and on (b, c) along d (a moment about the axis normal to d:
   // turning the face towards d lowers the plane along d). dφ = uᵀK⁻¹u·share·dM, κ = φ/L;
   // dλ = uᵀK⁻¹u·share·dN/L. In a half model d lies in the mirror plane and c is fixed.
+  LinearSolver compliance_solver;  // one symbolic analysis for every state (the pattern never changes)
   const auto add_compliance = [&](TcaCellState& c, const Vector& xs) {
     const Evaluation e = problem.evaluate(xs, false, true);
-    LinearSolver solver;
+    LinearSolver& solver = compliance_solver;
     if (solver.factorize(e.hessian) != LinearSolver::Status::positive_definite) return;
     const auto response = [&](double on_a, double on_b, double on_c) {
       Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.num_dofs());
@@ -197,12 +199,33 @@ CellRodSpec tca_cell_rod(const TcaSceneSpec& spec, const std::vector<TcaCellResu
   return rod;
 }
 
+void use_cell_rod_rung_mesh(TcaSceneSpec& spec) {
+  for (const ModelLevel& m : fidelity_ladder("tca").levels)
+    if (m.cell_rod) {
+      spec.mesh_level = m.mesh_level;
+      spec.axial_level = m.axial_level;
+      spec.element_order = m.element_order;
+      spec.serendipity = m.serendipity;
+      spec.integration = m.reduced_integration ? ElementIntegration::reduced : ElementIntegration::full;
+    }
+}
+
 CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
   CellRodTcaResult out;
   const int n = spec.design.actuator.ring_count;
   out.outcome = PathOutcome::stalled;  // until the rod has reached every output
   if (n < 1) {
     out.diagnosis = "the cell rod needs rings: a 3CA without them has no ring pitch (and barely bends)";
+    return out;
+  }
+  // The rod is planar: gravity must lie in the plane of the axis and the bend direction
+  // (checked before the cells are run).
+  Eigen::Vector3d bend = tca_bend_direction(spec.chamber_pressure_kPa);
+  if (bend.norm() > 0) bend.normalize();
+  const Eigen::Vector3d off_plane =
+      spec.gravity_m_s2 - spec.gravity_m_s2.z() * Eigen::Vector3d::UnitZ() - spec.gravity_m_s2.dot(bend) * bend;
+  if (off_plane.norm() > 1e-9 * (1 + spec.gravity_m_s2.norm())) {
+    out.diagnosis = "the cell rod is planar and gravity leaves the plane of the axis and the bend; use the 3D model";
     return out;
   }
   for (int ring : {1, (n + 1) / 2, n})
@@ -214,14 +237,6 @@ CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
     out.cell_dofs = cells.back().dofs;
   }
   const CellRodSpec rod = tca_cell_rod(spec, cells);
-  // The rod is planar: gravity must lie in the plane of the axis and the bend direction.
-  const Eigen::Vector3d bend = tca_bend_direction(spec.chamber_pressure_kPa);
-  const Eigen::Vector3d off_plane = spec.gravity_m_s2 - spec.gravity_m_s2.z() * Eigen::Vector3d::UnitZ() -
-                                    rod.gravity_along_bend_m_s2 * (bend.norm() > 0 ? bend.normalized() : bend);
-  if (off_plane.norm() > 1e-9 * (1 + spec.gravity_m_s2.norm())) {
-    out.diagnosis = "the cell rod is planar and gravity leaves the plane of the axis and the bend; use the 3D model";
-    return out;
-  }
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<double> pressures = {0.0};
   pressures.insert(pressures.end(), spec.output_pressures_kPa.begin(), spec.output_pressures_kPa.end());

@@ -71,6 +71,10 @@ CellTable cell_table(const TcaCellResult& cell);
 /// gravity resolved along the pressures' bend direction and the axis (user frame).
 CellRodSpec tca_cell_rod(const TcaSceneSpec& spec, const std::vector<TcaCellResult>& cells);
 
+/// Sets spec's mesh to the cells of the fidelity ladder's cell-rod rung (fidelity.cpp: Hex20/P1 at
+/// 27 points, level 1, level 4's layers), where its measured error holds.
+void use_cell_rod_rung_mesh(TcaSceneSpec& spec);
+
 /// The 3CA scene on the cell rod: cells about the first, middle and last rings (fewer when
 /// the design has fewer), the rod evaluated at rest and at every output pressure.
 struct CellRodTcaResult {
