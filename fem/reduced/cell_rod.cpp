@@ -1,5 +1,7 @@
 #include "fem/reduced/cell_rod.hpp"
 
+#include "fem/reduced/cell_interpolation.hpp"
+
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -8,29 +10,6 @@
 namespace softarm::fem {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-
-/// A column of a cell's table at pressure p, linear between its states; nothing past its ends.
-std::optional<double> at_pressure(const std::vector<double>& p, const std::vector<double>& v, double pressure) {
-  if (p.empty() || pressure < p.front() - 1e-9 || pressure > p.back() + 1e-9) return std::nullopt;
-  for (std::size_t i = 1; i < p.size(); ++i)
-    if (pressure <= p[i] + 1e-9) {
-      const double f = (pressure - p[i - 1]) / (p[i] - p[i - 1]);
-      return v[i - 1] + std::clamp(f, 0.0, 1.0) * (v[i] - v[i - 1]);
-    }
-  return v.back();
-}
-
-/// Lagrange interpolation through (z_k, v_k).
-double lagrange(const std::vector<double>& z, const std::vector<double>& v, double at) {
-  double sum = 0;
-  for (std::size_t k = 0; k < z.size(); ++k) {
-    double w = 1;
-    for (std::size_t j = 0; j < z.size(); ++j)
-      if (j != k) w *= (at - z[j]) / (z[k] - z[j]);
-    sum += w * v[k];
-  }
-  return sum;
-}
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 }  // namespace
@@ -41,9 +20,9 @@ CellRodState solve_cell_rod(const CellRodSpec& spec, double pressure_kPa) {
   // Every cell's response at this pressure.
   std::vector<double> z, stretch, curvature, compliance, mass;
   for (const CellTable& c : spec.cells) {
-    const auto l = at_pressure(c.pressure_kPa, c.stretch, pressure_kPa);
-    const auto k = at_pressure(c.pressure_kPa, c.curvature_per_mm, pressure_kPa);
-    const auto m = at_pressure(c.pressure_kPa, c.bending_compliance_per_Nmm2, pressure_kPa);
+    const auto l = along_ramp(c.pressure_kPa, c.stretch, pressure_kPa);
+    const auto k = along_ramp(c.pressure_kPa, c.curvature_per_mm, pressure_kPa);
+    const auto m = along_ramp(c.pressure_kPa, c.bending_compliance_per_Nmm2, pressure_kPa);
     if (!l || !k || !m) {
       out.diagnosis = "the cell at z = " + std::to_string(c.z_mm) + " mm reached " +
                       std::to_string(c.pressure_kPa.empty() ? 0.0 : c.pressure_kPa.back()) + " kPa only";

@@ -111,18 +111,31 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
   // turning the face towards d lowers the plane along d). dφ = uᵀK⁻¹u·share·dM, κ = φ/L;
   // dλ = uᵀK⁻¹u·share·dN/L. In a half model d lies in the mirror plane and c is fixed.
   LinearSolver compliance_solver;  // one symbolic analysis for every state (the pattern never changes)
+  // Solver frame → user frame (the mirror plane's turn about z), and the face's rotation
+  // φ = (c, −b) = T·(b, c) about the solver's x and y, whose work-conjugate moment M gives the
+  // generalised forces (F_b, F_c) = Tᵀ·M.
+  const Eigen::Matrix2d to_user = rotation_about_z(theta).topLeftCorner<2, 2>();
+  Eigen::Matrix2d T;
+  T << 0, 1, -1, 0;
   const auto add_compliance = [&](TcaCellState& c, const Vector& xs) {
     const Evaluation e = problem.evaluate(xs, false, true);
     LinearSolver& solver = compliance_solver;
     if (solver.factorize(e.hessian) != LinearSolver::Status::positive_definite) return;
-    const auto response = [&](double on_a, double on_b, double on_c) {
+    const auto unit = [&](int component) {
       Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.num_dofs());
-      u.segment<3>(3 * pilot) << on_a, on_b, on_c;
+      u[3 * pilot + component] = 1;
       problem.zero_prescribed(u);
-      return u.dot(solver.solve(u));
+      return u;
     };
-    c.bending_compliance_per_Nmm2 = response(0, d.x(), d.y()) * share / L;
-    c.axial_compliance_per_N = response(1, 0, 0) * share / L;
+    const Eigen::VectorXd ua = unit(0), ub = unit(1), uc = unit(2);
+    const Eigen::VectorXd kb = solver.solve(ub), kc = solver.solve(uc);
+    Eigen::Matrix2d g;  // the plane's (b, c) under unit (F_b, F_c)
+    g << ub.dot(kb), ub.dot(kc), uc.dot(kb), uc.dot(kc);
+    c.bending_compliance_per_Nmm2 = d.dot(g * d) * share / L;
+    c.axial_compliance_per_N = ua.dot(solver.solve(ua)) * share / L;
+    Eigen::Matrix2d k = T * g * T.transpose() * share / L;  // d(κx, κy)/d(Mx, My), solver frame
+    if (out.model.half) k(0, 0) = k(1, 1);  // about the mirror plane's normal only: isotropic (header)
+    c.bending_compliance_matrix_per_Nmm2 = to_user * k * to_user.transpose();
   };
   const auto state_of = [&](double pressure_kPa, double volume_mm3, const Vector& xs) {
     TcaCellState c;
@@ -132,6 +145,8 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
     const Eigen::Vector2d towards(-b, -cy);  // the end face's normal leans this way
     c.curvature_per_mm = std::atan(towards.norm()) / L;
     if (towards.dot(d) < 0) c.curvature_per_mm = -c.curvature_per_mm;
+    const Eigen::Vector2d phi = T * Eigen::Vector2d(b, cy);
+    if (phi.norm() > 0) c.curvature_vector_per_mm = to_user * phi * (std::atan(phi.norm()) / phi.norm() / L);
     c.chamber_volume_mm3 = volume_mm3 / share;
     c.plane_gap_mm = plane->max_gap(xs);
     return c;
@@ -145,7 +160,13 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
     callbacks.on_converged = [](double, const Vector&, bool, const NewtonReport&) {};
     StepSettings one_step = spec.steps;
     one_step.initial_increment = one_step.max_increment = 1.0;
-    out.path.path = follow_load_path(problem, x, solver, {1.0}, callbacks, spec.newton, one_step);
+    if (end_loaded) {
+      out.path.path = follow_load_path(problem, x, solver, {1.0}, callbacks, spec.newton, one_step);
+    } else {  // no load at all: the rest state is the equilibrium (Newton has no residual to scale by)
+      out.path.path.completed = true;
+      out.path.path.reached_level = 1.0;
+      out.path.path.message = "no load: the rest state";
+    }
     out.path.outcome = out.path.path.completed ? PathOutcome::completed : PathOutcome::stalled;
     out.path.diagnosis = out.path.path.message;
     out.states.push_back(state_of(0.0, 0.0, x));
@@ -210,6 +231,14 @@ void use_cell_rod_rung_mesh(TcaSceneSpec& spec) {
     }
 }
 
+std::vector<int> cell_rod_rings(int ring_count) {
+  std::vector<int> rings;
+  if (ring_count < 1) return rings;
+  for (int ring : {1, (ring_count + 1) / 2, ring_count})
+    if (rings.empty() || rings.back() != ring) rings.push_back(ring);
+  return rings;
+}
+
 CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
   CellRodTcaResult out;
   const int n = spec.design.actuator.ring_count;
@@ -228,8 +257,7 @@ CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
     out.diagnosis = "the cell rod is planar and gravity leaves the plane of the axis and the bend; use the 3D model";
     return out;
   }
-  for (int ring : {1, (n + 1) / 2, n})
-    if (out.rings.empty() || out.rings.back() != ring) out.rings.push_back(ring);
+  out.rings = cell_rod_rings(n);
   std::vector<TcaCellResult> cells;
   for (int ring : out.rings) {
     cells.push_back(run_tca_cell(spec, ring));

@@ -37,6 +37,13 @@ struct TcaCellState {
   /// moment held, dλ/dN (1/N). 0 where the tangent is not positive definite (past a limit point).
   double bending_compliance_per_Nmm2 = 0;
   double axial_compliance_per_N = 0;
+  /// The same in the user frame, as vectors: the rate along +z of the section's rotation vector,
+  /// κ = (κx, κy) per reference length (κ₀ is |κ|, signed), and at output states the tangent's
+  /// d(κx, κy)/d(Mx, My) for end moments about x and y (0 where not positive definite). A half
+  /// model sees only moments about its mirror plane's normal; the other diagonal entry is taken
+  /// equal to it (an isotropic section: exact for the unpressurised 3CA's threefold symmetry).
+  Eigen::Vector2d curvature_vector_per_mm = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d bending_compliance_matrix_per_Nmm2 = Eigen::Matrix2d::Zero();
   int newton_iterations = 0;
   bool is_output = false;
 };
@@ -74,6 +81,10 @@ CellRodSpec tca_cell_rod(const TcaSceneSpec& spec, const std::vector<TcaCellResu
 /// Sets spec's mesh to the cells of the fidelity ladder's cell-rod rung (fidelity.cpp: Hex20/P1 at
 /// 27 points, level 1, level 4's layers), where its measured error holds.
 void use_cell_rod_rung_mesh(TcaSceneSpec& spec);
+
+/// The rings a cell rod takes its cells about: the first, middle and last (fewer when the 3CA has
+/// fewer; none without rings).
+std::vector<int> cell_rod_rings(int ring_count);
 
 /// The 3CA scene on the cell rod: cells about the first, middle and last rings (fewer when
 /// the design has fewer), the rod evaluated at rest and at every output pressure.

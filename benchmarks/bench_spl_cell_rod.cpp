@@ -1,0 +1,113 @@
+// The SPL pose on the spatial cell rod (fem/scenes/spl_cell_rod.hpp): its cells' cost and
+// the tip's path, and with --compare the joints against a 3D run's summary.json (the
+// fidelity ladder's reference: configs/convergence/spl_thesis_pose_axial3.json).
+//
+//   bench_spl_cell_rod [config] [--full] [--cell-levels N] [--threads N] [--compare summary.json]
+//                      [--torsion-scales 1,0.5,2] [--tables]
+//   --full: full-model cells even where a segment's pressures allow a half model
+//   --tables: print every cell's table (stretch, curvature vector, compliances) at its outputs
+//   --torsion-scales: pose again with each segment's GJ times each factor (the cells once)
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "fem/core/parallel.hpp"
+#include "fem/scenes/scene_config.hpp"
+#include "fem/scenes/spl_cell_rod.hpp"
+
+using namespace softarm;
+
+int main(int argc, char** argv) {
+  std::string config = "configs/spl_thesis_pose.json", compare;
+  bool full = false, tables = false;
+  int cell_levels = 16;
+  std::vector<double> torsion_scales;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--compare" && i + 1 < argc) compare = argv[++i];
+    else if (a == "--full") full = true;
+    else if (a == "--tables") tables = true;
+    else if (a == "--torsion-scales" && i + 1 < argc) {
+      std::stringstream list(argv[++i]);
+      for (std::string item; std::getline(list, item, ',');) torsion_scales.push_back(std::atof(item.c_str()));
+    }
+    else if (a == "--cell-levels" && i + 1 < argc) cell_levels = std::atoi(argv[++i]);
+    else if (a == "--threads" && i + 1 < argc) fem::set_thread_count(std::atoi(argv[++i]));
+    else config = a;
+  }
+  auto scene = fem::load_scene_config(config);
+  if (scene.scene != "spl") {
+    std::fprintf(stderr, "bench_spl_cell_rod: %s is not an spl scene\n", config.c_str());
+    return 2;
+  }
+  fem::SplSceneSpec spec = scene.spl;
+  if (full) spec.allow_symmetry = false;
+  const fem::SplCells cells = fem::spl_cells(spec, cell_levels);
+  std::printf("%s: %d cells (largest %d dofs), %.1f s, threads %d\n", config.c_str(), cells.cells,
+              cells.largest_cell_dofs, cells.seconds, fem::thread_count());
+  for (int n = 0; n < 3; ++n) {
+    std::printf("segment %d: %s model, rings", n + 1, cells.half_model[n] ? "half" : "full");
+    for (int ring : cells.rings[n]) std::printf(" %d", ring);
+    std::printf("\n");
+  }
+  if (tables)
+    for (const auto& piece : cells.rod.pieces)
+      for (const auto& c : piece.cells) {
+        std::printf("\ncell at z = %.3f mm (GJ %.4g N·mm²)\n%8s %10s %12s %12s %12s %12s %12s %12s %12s\n", c.z_mm,
+                    piece.torsion_stiffness_Nmm2, "level", "stretch", "kx_per_mm", "ky_per_mm", "Cxx", "Cxy", "Cyx",
+                    "Cyy", "C_axial");
+        for (std::size_t i = 0; i < c.level.size(); ++i) {
+          const auto& k = c.curvature_per_mm[i];
+          const auto& m = c.bending_compliance_per_Nmm2[i];
+          std::printf("%8.4f %10.6f %12.4e %12.4e %12.4e %12.4e %12.4e %12.4e %12.4e\n", c.level[i], c.stretch[i], k.x(),
+                      k.y(), m(0, 0), m(0, 1), m(1, 0), m(1, 1), c.axial_compliance_per_N[i]);
+        }
+      }
+  nlohmann::json reference;
+  if (!compare.empty()) reference = nlohmann::json::parse(std::ifstream(compare));
+  if (torsion_scales.empty()) torsion_scales = {1.0};
+  int rc = 0;
+  for (double scale : torsion_scales) {
+    fem::SplCells scaled = cells;
+    for (auto& piece : scaled.rod.pieces) piece.torsion_stiffness_Nmm2 *= scale;
+    const fem::SplCellRodResult r = fem::pose_spl_cell_rod(scaled, spec.output_levels);
+    std::printf("\nGJ x %.3g: rod %.3f s; mass %.1f g\n", scale, r.rod_seconds, 1e3 * r.mass_kg);
+    std::printf("%10s %10s %10s %10s %10s %6s\n", "level", "tip_x_mm", "tip_y_mm", "tip_z_mm", "tilt_deg", "iter");
+    for (const auto& s : r.curve)
+      std::printf("%10.4f %10.2f %10.2f %10.2f %10.2f %6d\n", s.load_fraction, s.tip_position_mm.x(),
+                  s.tip_position_mm.y(), s.tip_position_mm.z(), s.tip_tilt_deg, s.newton_iterations);
+    std::printf("outcome: %s%s%s\n", fem::to_string(r.outcome), r.diagnosis.empty() ? "" : " — ", r.diagnosis.c_str());
+    rc = std::max(rc, r.converged ? 0 : 1);
+    double sum = 0;
+    int count = 0;
+    for (std::size_t j = 0; j < r.joints.size(); ++j) {
+      const auto& p = r.joints[j].pose.position_mm;
+      std::printf("%-36s (%8.2f, %8.2f, %8.2f) mm, tilt %7.2f°", r.joints[j].name.c_str(), p.x(), p.y(), p.z(),
+                  r.joints[j].pose.tilt_deg);
+      if (!reference.is_null() && j < reference["joints"].size()) {
+        const auto& q = reference["joints"][j]["position_mm"];
+        const double d = std::hypot(p.x() - q[0].get<double>(), p.y() - q[1].get<double>(), p.z() - q[2].get<double>());
+        std::printf("   reference (%8.2f, %8.2f, %8.2f), %6.1f mm off", q[0].get<double>(), q[1].get<double>(),
+                    q[2].get<double>(), d);
+        if (j > 0) sum += d, ++count;  // the shoulder is clamped in both
+      }
+      std::printf("\n");
+    }
+    if (count > 0) {
+      const auto& q = reference["joints"].back()["position_mm"];
+      const double travel = std::hypot(q[0].get<double>(), q[1].get<double>(), q[2].get<double>());
+      const auto& p = r.joints.back().pose.position_mm;
+      const double tip = std::hypot(p.x() - q[0].get<double>(), p.y() - q[1].get<double>(), p.z() - q[2].get<double>());
+      std::printf("tip %.1f mm off, %.1f %% of the reference tip's %.0f mm travel; joints %.1f mm off on average\n", tip,
+                  100 * tip / travel, travel, sum / count);
+    }
+  }
+  return rc;
+}

@@ -1,0 +1,163 @@
+#include "fem/reduced/spatial_cell_rod.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "fem/reduced/cell_interpolation.hpp"
+
+namespace softarm::fem {
+namespace {
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+
+Mat3 rotation(const Vec3& v) {  // exp([v]×), Rodrigues
+  const double angle = v.norm();
+  return angle < 1e-300 ? Mat3::Identity() : Eigen::AngleAxisd(angle, v / angle).toRotationMatrix();
+}
+
+/// One interval's section at the load level: free response and compliances.
+struct IntervalSection {
+  Vec3 free_curvature = Vec3::Zero();  // material frame
+  double free_stretch = 1;
+  Eigen::Matrix2d bending = Eigen::Matrix2d::Zero();
+  double axial = 0, torsion = 0;       // compliances: 1/N, 1/(N·mm²)
+  double length = 0, mass = 0;
+};
+
+/// The pieces' intervals at level t; an empty string when every cell's table covers t.
+std::string sections_at(const SpatialCellRodSpec& spec, double t, std::vector<IntervalSection>& out,
+                        std::vector<int>& first_interval) {
+  out.clear();
+  first_interval.clear();
+  for (const SpatialCellPiece& piece : spec.pieces) {
+    first_interval.push_back(static_cast<int>(out.size()));
+    const int n = std::max(1, static_cast<int>(std::ceil(piece.length_mm / spec.interval_mm - 1e-9)));
+    const double dz = piece.length_mm / n;
+    if (piece.cells.empty()) {
+      for (int i = 0; i < n; ++i) out.push_back({Vec3::Zero(), 1, Eigen::Matrix2d::Zero(), 0, 0, dz, piece.mass_kg / n});
+      continue;
+    }
+    std::vector<double> z, stretch, axial, mass;
+    std::vector<Eigen::Vector2d> curvature;
+    std::vector<Eigen::Matrix2d> bending;
+    for (const SpatialCellTable& c : piece.cells) {
+      const auto l = along_ramp(c.level, c.stretch, t);
+      const auto k = along_ramp(c.level, c.curvature_per_mm, t);
+      const auto b = along_ramp(c.level, c.bending_compliance_per_Nmm2, t);
+      const auto a = along_ramp(c.level, c.axial_compliance_per_N, t);
+      if (!l || !k || !b || !a)
+        return "the cell at z = " + std::to_string(c.z_mm) + " mm reached " +
+               std::to_string(c.level.empty() ? 0.0 : c.level.back()) + " of its pressures only";
+      z.push_back(c.z_mm), stretch.push_back(*l), curvature.push_back(*k), bending.push_back(*b);
+      axial.push_back(*a), mass.push_back(c.mass_per_length_kg_per_mm);
+    }
+    // From the piece's top (its z = length) down.
+    for (int i = 0; i < n; ++i) {
+      const double zi = piece.length_mm - (i + 0.5) * dz;
+      const bool cap = zi < piece.cap_mm || zi > piece.length_mm - piece.cap_mm;
+      IntervalSection s;
+      if (!cap) {
+        const Eigen::Vector2d k = lagrange(z, curvature, zi);
+        s.free_curvature = Vec3(k.x(), k.y(), 0);
+        s.free_stretch = lagrange(z, stretch, zi);
+      }
+      s.bending = lagrange(z, bending, zi);
+      s.axial = lagrange(z, axial, zi);
+      s.torsion = piece.torsion_stiffness_Nmm2 > 0 ? 1 / piece.torsion_stiffness_Nmm2 : 0;
+      s.length = dz;
+      s.mass = lagrange(z, mass, zi) * dz;
+      out.push_back(s);
+    }
+  }
+  return {};
+}
+}  // namespace
+
+double spatial_cell_rod_length_mm(const SpatialCellRodSpec& spec) {
+  double l = 0;
+  for (const auto& p : spec.pieces) l += p.length_mm;
+  return l;
+}
+
+double spatial_cell_rod_mass_kg(const SpatialCellRodSpec& spec) {
+  std::vector<IntervalSection> sections;
+  std::vector<int> first;
+  if (!sections_at(spec, 0.0, sections, first).empty()) return std::nan("");  // a table without its rest state
+  double m = 0;
+  for (const auto& s : sections) m += s.mass;
+  return m;
+}
+
+SpatialCellRodState solve_spatial_cell_rod(const SpatialCellRodSpec& spec, double level,
+                                           const SpatialCellRodState* start) {
+  SpatialCellRodState out;
+  out.level = level;
+  std::vector<IntervalSection> sec;
+  std::vector<int> first;
+  if (std::string why = sections_at(spec, level, sec, first); !why.empty()) {
+    out.diagnosis = why;
+    return out;
+  }
+  const int n = static_cast<int>(sec.size());
+  for (std::size_t p = 0; p < spec.pieces.size(); ++p) {
+    out.piece_first_node.push_back(first[p]);
+    out.piece_last_node.push_back(p + 1 < spec.pieces.size() ? first[p + 1] : n);
+  }
+  const Vec3& g = spec.gravity_m_s2;  // kg · m/s² = N
+  std::vector<Vec3> moment(n, Vec3::Zero()), next(n);
+  std::vector<double> tension(n, 0.0);
+  if (start && static_cast<int>(start->moment_Nmm.size()) == n) moment = start->moment_Nmm;
+  std::vector<Vec3> r(n + 1);
+  std::vector<Mat3> R(n + 1);
+  double relaxation = 1, last_change = 1e300;
+  Vec3 last_tip = Vec3::Constant(1e300);
+  for (int it = 1; it <= 400; ++it) {
+    // The shape under the current moments, from the clamp down.
+    r[0] = Vec3(0, 0, spatial_cell_rod_length_mm(spec));
+    R[0] = Mat3::Identity();
+    for (int i = 0; i < n; ++i) {
+      const IntervalSection& s = sec[i];
+      const Vec3 local = R[i].transpose() * moment[i];
+      Vec3 k = s.free_curvature;
+      k.head<2>() += s.bending * local.head<2>();
+      k.z() += s.torsion * local.z();
+      const double stretch = s.free_stretch + s.axial * tension[i];
+      const Mat3 half = R[i] * rotation(-0.5 * s.length * k);
+      R[i + 1] = R[i] * rotation(-s.length * k);
+      r[i + 1] = r[i] - s.length * stretch * half.col(2);
+    }
+    // The weights' moments and tension at each interval's midpoint (masses lumped there).
+    Vec3 force = spec.tip_mass_kg * g, about_origin = r[n].cross(force);
+    for (int i = n - 1; i >= 0; --i) {
+      const Vec3 at = 0.5 * (r[i] + r[i + 1]);
+      next[i] = at.cross(force) - about_origin;  // −Σ (r_j − at) × f_j over the weights below
+      tension[i] = -force.dot(R[i].col(2));
+      const Vec3 f = sec[i].mass * g;
+      about_origin += at.cross(f);
+      force += f;
+    }
+    const double change = (r[n] - last_tip).norm();
+    out.iterations = it;
+    if (change < 1e-9) {
+      out.ok = true;
+      break;
+    }
+    // An iteration that grows the change oscillates: relax harder.
+    if (it > 2 && change > last_change) relaxation = std::max(0.05, 0.5 * relaxation);
+    last_change = change;
+    last_tip = r[n];
+    for (int i = 0; i < n; ++i) moment[i] += relaxation * (next[i] - moment[i]);
+  }
+  if (!out.ok) {
+    out.diagnosis = "the shape under its weight did not settle in 400 iterations (the weight's moment may exceed what "
+                    "the sections hold: a limit point)";
+    return out;
+  }
+  out.position.assign(r.begin(), r.end());
+  out.frame.assign(R.begin(), R.end());
+  out.moment_Nmm = moment;
+  return out;
+}
+
+}  // namespace softarm::fem

@@ -1,0 +1,158 @@
+#include "fem/scenes/spl_cell_rod.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "fem/reduced/cell_section.hpp"
+#include "fem/reduced/rod_layout.hpp"
+#include "fem/scenes/tca_cell.hpp"
+
+namespace softarm::fem {
+namespace {
+constexpr double kDeg = 57.295779513082320876;
+
+/// Segment n's (0..2) 3CA scene for its cells: its design, the arm's materials, its three
+/// pressures, outputs every 1/cell_levels of its ramp, the cell-rod rung's mesh.
+TcaSceneSpec segment_scene(const SplSceneSpec& spec, int n, int cell_levels) {
+  TcaSceneSpec s;
+  s.design = spec.design.segments[n];
+  s.tube_material = spec.tube_material;
+  s.ring_material = spec.ring_material;
+  s.sheath_material = spec.sheath_material;
+  s.allow_symmetry = spec.allow_symmetry;
+  s.chamber_pressure_kPa = {spec.chamber_pressure_kPa[3 * n], spec.chamber_pressure_kPa[3 * n + 1],
+                            spec.chamber_pressure_kPa[3 * n + 2]};
+  const double peak = *std::max_element(s.chamber_pressure_kPa.begin(), s.chamber_pressure_kPa.end());
+  if (peak > 0)
+    for (int i = 1; i <= cell_levels; ++i) s.output_pressures_kPa.push_back(peak * i / cell_levels);
+  s.newton = spec.newton;
+  s.steps = spec.steps;
+  s.limit = spec.limit;
+  use_cell_rod_rung_mesh(s);
+  return s;
+}
+
+/// A cell's output states as the spatial rod's table, along the load level (an unloaded cell's
+/// one state holds at every level).
+SpatialCellTable spatial_table(const TcaCellResult& cell, double peak_kPa) {
+  SpatialCellTable t;
+  t.z_mm = cell.ring_centre_z_mm;
+  t.mass_per_length_kg_per_mm = cell.mass_per_length_kg_per_mm;
+  for (const TcaCellState& s : cell.states)
+    if (s.is_output && s.bending_compliance_per_Nmm2 > 0) {
+      t.level.push_back(peak_kPa > 0 ? s.pressure_kPa / peak_kPa : 0.0);
+      t.stretch.push_back(s.stretch);
+      t.curvature_per_mm.push_back(s.curvature_vector_per_mm);
+      t.bending_compliance_per_Nmm2.push_back(s.bending_compliance_matrix_per_Nmm2);
+      t.axial_compliance_per_N.push_back(s.axial_compliance_per_N);
+    }
+  if (peak_kPa <= 0 && t.level.size() == 1) {
+    t.level.push_back(1.0);
+    t.stretch.push_back(t.stretch.front());
+    t.curvature_per_mm.push_back(t.curvature_per_mm.front());
+    t.bending_compliance_per_Nmm2.push_back(t.bending_compliance_per_Nmm2.front());
+    t.axial_compliance_per_N.push_back(t.axial_compliance_per_N.front());
+  }
+  return t;
+}
+
+/// The segment's torsional stiffness GJ at mid-height, as the spatial rod's (spatial_rod.hpp):
+/// Σ μ₀ A |ξ|² over the section's cells (the polar moment of the lobed section).
+double torsion_stiffness(const TcaDesign& design, const Material& tube, const Material& sheath) {
+  double gj = 0;
+  for (const FibreCell& c : tca_cell_section(design, 0.5 * design.actuator.length_mm).cells)
+    gj += (c.tube_area * tube.law->initial_shear_modulus() + c.sheath_area * sheath.law->initial_shear_modulus()) *
+          c.xi.squaredNorm();
+  return gj;
+}
+
+FacePose pose_at(const SpatialCellRodState& s, int node) {
+  const double c = std::clamp(s.frame[node].col(2).z(), -1.0, 1.0);
+  return {s.position[node], s.frame[node], std::acos(c) * kDeg};
+}
+}  // namespace
+
+SplCells spl_cells(const SplSceneSpec& spec, int cell_levels) {
+  SplCells out;
+  out.rod.gravity_m_s2 = spec.gravity_m_s2;
+  out.rod.tip_mass_kg = spec.tip_mass_kg;
+  // Pieces from the shoulder: connector, segment 1, connector, segment 2, connector, segment 3.
+  for (const RodPiece& piece : spl_rod_pieces(spec.design, spec.connector_material)) {
+    SpatialCellPiece p;
+    if (piece.kind == RodPiece::Kind::connector) {
+      p.length_mm = piece.length_mm;
+      p.mass_kg = piece.mass_kg;
+      out.rod.pieces.push_back(p);
+      continue;
+    }
+    const int n = static_cast<int>(out.rod.pieces.size()) / 2;
+    const TcaSceneSpec scene = segment_scene(spec, n, cell_levels);
+    const double peak = *std::max_element(scene.chamber_pressure_kPa.begin(), scene.chamber_pressure_kPa.end());
+    p.length_mm = scene.design.actuator.length_mm;
+    p.cap_mm = scene.design.actuator.end_cap_thickness_mm;
+    p.torsion_stiffness_Nmm2 = torsion_stiffness(scene.design, spec.tube_material, spec.sheath_material);
+    out.rings[n] = cell_rod_rings(scene.design.actuator.ring_count);
+    if (out.rings[n].empty()) {
+      out.failure = "segment " + std::to_string(n + 1) + " has no rings: the cell rod needs a ring pitch";
+      return out;
+    }
+    for (int ring : out.rings[n]) {
+      const TcaCellResult cell = run_tca_cell(scene, ring);
+      out.half_model[n] = cell.model.half;
+      out.seconds += cell.seconds;
+      out.largest_cell_dofs = std::max(out.largest_cell_dofs, cell.dofs);
+      ++out.cells;
+      out.outcomes.push_back(cell.path.outcome);
+      if (cell.path.outcome != PathOutcome::completed)
+        out.notes += " (segment " + std::to_string(n + 1) + ", ring " + std::to_string(ring) + ": " +
+                     cell.path.diagnosis + ")";
+      p.cells.push_back(spatial_table(cell, peak));
+    }
+    out.rod.pieces.push_back(p);
+  }
+  return out;
+}
+
+SplCellRodResult pose_spl_cell_rod(const SplCells& cells, const std::vector<double>& output_levels) {
+  SplCellRodResult out;
+  if (!cells.failure.empty()) {
+    out.diagnosis = cells.failure;
+    return out;
+  }
+  out.mass_kg = spatial_cell_rod_mass_kg(cells.rod);
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<double> levels = {0.0};
+  levels.insert(levels.end(), output_levels.begin(), output_levels.end());
+  SpatialCellRodState last;
+  for (double t : levels) {
+    const SpatialCellRodState s = solve_spatial_cell_rod(cells.rod, t, last.ok ? &last : nullptr);
+    if (!s.ok) {
+      out.diagnosis = s.diagnosis + cells.notes;
+      break;
+    }
+    last = s;
+    const int tip = static_cast<int>(s.position.size()) - 1;
+    out.curve.push_back({t, s.position[tip], pose_at(s, tip).tilt_deg, s.iterations});
+  }
+  out.rod_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.converged = out.curve.size() == levels.size();
+  out.reached_level = out.curve.empty() ? 0.0 : out.curve.back().load_fraction;
+  out.outcome = out.converged ? PathOutcome::completed : PathOutcome::stalled;
+  if (!out.converged && std::count(cells.outcomes.begin(), cells.outcomes.end(), PathOutcome::limit_point) > 0)
+    out.outcome = PathOutcome::limit_point;
+  if (last.ok)
+    for (int n = 1; n <= 3; ++n) {
+      const std::string segment = "segment " + std::to_string(n);
+      out.joints.push_back({segment + " top" + (n == 1 ? " (shoulder connector)" : ""),
+                            pose_at(last, last.piece_first_node[2 * n - 1])});
+      out.joints.push_back({segment + " bottom" + (n == 3 ? " (tip)" : ""), pose_at(last, last.piece_last_node[2 * n - 1])});
+    }
+  return out;
+}
+
+SplCellRodResult run_cell_rod_spl(const SplSceneSpec& spec, int cell_levels) {
+  return pose_spl_cell_rod(spl_cells(spec, cell_levels), spec.output_levels);
+}
+
+}  // namespace softarm::fem

@@ -1,0 +1,49 @@
+#pragma once
+// The SPL pose on the spatial cell rod (fem/reduced/spatial_cell_rod.hpp): each 3CA segment's
+// ring-pitch cells (tca_cell.hpp) about its first, middle and last rings, under that segment's
+// own three chamber pressures ramped from 0 to their peaks; the rod then poses the arm under
+// gravity in any direction and the tip mass, at rest and at every output level, in about a
+// millisecond per level. The cells take the mesh of the 3CA ladder's cell-rod rung (Hex20/P1
+// at 27 points, level 1 cross-section, level 4's layers), a half model where a segment's
+// pressures are mirror-symmetric (a lone chamber, two equal ones, none), else the full one.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "fem/reduced/spatial_cell_rod.hpp"
+#include "fem/scenes/spl_scene.hpp"
+
+namespace softarm::fem {
+
+/// Each segment's cells as the rod's tables: the expensive part, which depends on the design,
+/// the materials and each segment's pressures only (not on gravity or the tip mass).
+struct SplCells {
+  SpatialCellRodSpec rod;                      // with the scene's gravity and tip mass
+  std::array<std::vector<int>, 3> rings;       // the cells of each segment
+  std::array<bool, 3> half_model{};            // per segment's cells
+  int cells = 0, largest_cell_dofs = 0;
+  double seconds = 0;
+  std::vector<PathOutcome> outcomes;           // per cell, in order
+  std::string notes;                           // the cells that stopped short, and why
+  std::string failure;                         // why there are no cells (a segment without rings)
+};
+/// `cell_levels`: the load levels at which the cells report (every 1/cell_levels of the ramp).
+SplCells spl_cells(const SplSceneSpec& spec, int cell_levels = 16);
+
+struct SplCellRodResult {
+  std::vector<SplState> curve;        // rest (under gravity), then every output level the rod reached
+  std::vector<SplJoint> joints;       // at the last level reached, named and ordered as the 3D scene's
+  bool converged = false;             // every output level reached
+  std::string diagnosis;              // why not
+  PathOutcome outcome = PathOutcome::stalled;  // limit_point where a cell passed its pressure maximum
+  double reached_level = 0;
+  double mass_kg = 0;                 // the rod's (cells' smeared mass and connectors)
+  double rod_seconds = 0;
+};
+/// The rod of `cells` at rest and at each of `levels` (increasing fractions of the pressures).
+SplCellRodResult pose_spl_cell_rod(const SplCells& cells, const std::vector<double>& levels);
+
+/// spl_cells, then the pose at the scene's output levels.
+SplCellRodResult run_cell_rod_spl(const SplSceneSpec& spec, int cell_levels = 16);
+
+}  // namespace softarm::fem

@@ -1,0 +1,140 @@
+// The spatial cell rod (fem/reduced/spatial_cell_rod.hpp) on synthetic cell tables: a
+// constant free curvature and stretch give a circular arc (closed form); a tip load on a
+// straight rod gives the linear cantilever's deflection and rotation, towards the load; in one
+// plane it poses a 3CA as the planar cell rod (cell_rod.hpp) does, weight and caps included;
+// past its cells' tables it says so.
+#include <catch2/catch.hpp>
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "fem/reduced/cell_rod.hpp"
+#include "fem/reduced/spatial_cell_rod.hpp"
+
+using namespace softarm::fem;
+
+namespace {
+/// A cell whose response is linear in the level: curvature κ·t, stretch 1 + ε·t, compliance c.
+SpatialCellTable linear_cell(double z, const Eigen::Vector2d& curvature, double strain, double compliance,
+                             double mass_per_length) {
+  SpatialCellTable t;
+  t.z_mm = z;
+  t.mass_per_length_kg_per_mm = mass_per_length;
+  for (double level : {0.0, 0.5, 1.0}) {
+    t.level.push_back(level);
+    t.stretch.push_back(1 + strain * level);
+    t.curvature_per_mm.push_back(curvature * level);
+    t.bending_compliance_per_Nmm2.push_back(compliance * Eigen::Matrix2d::Identity());
+    t.axial_compliance_per_N.push_back(0);
+  }
+  return t;
+}
+
+SpatialCellPiece segment(double length, const std::vector<SpatialCellTable>& cells, double cap = 0) {
+  SpatialCellPiece p;
+  p.length_mm = length;
+  p.cells = cells;
+  p.cap_mm = cap;
+  return p;
+}
+}  // namespace
+
+TEST_CASE("A constant free curvature and stretch pose the spatial cell rod as a circular arc", "[cell][rod]") {
+  const double L = 160, k = 0.01, strain = 0.2;  // 1.6 rad
+  SpatialCellRodSpec spec;
+  // About +y the section turns so that, going down from the clamp, the axis leans to +x.
+  spec.pieces = {segment(L, {linear_cell(20, {0, k}, strain, 1e-6, 0), linear_cell(140, {0, k}, strain, 1e-6, 0)})};
+  const SpatialCellRodState s = solve_spatial_cell_rod(spec, 1.0);
+  REQUIRE(s.ok);
+  const double theta = k * L, lambda = 1 + strain;
+  const Eigen::Vector3d tip = s.position.back();
+  CHECK(tip.x() == Approx(lambda * (1 - std::cos(theta)) / k).epsilon(1e-5));
+  CHECK(tip.y() == Approx(0).margin(1e-9));
+  CHECK(tip.z() == Approx(L - lambda * std::sin(theta) / k).epsilon(1e-5));
+  // The tip's frame: turned by −θ about y.
+  CHECK(s.frame.back()(0, 2) == Approx(-std::sin(theta)).margin(1e-9));
+  // Halfway up the ramp: half the curvature.
+  const SpatialCellRodState half = solve_spatial_cell_rod(spec, 0.5);
+  REQUIRE(half.ok);
+  CHECK(half.position.back().x() == Approx((1 + strain / 2) * (1 - std::cos(theta / 2)) / (k / 2)).epsilon(1e-5));
+}
+
+TEST_CASE("A tip load bends the spatial cell rod as the linear cantilever, towards the load", "[cell][rod]") {
+  const double L = 100, c = 1e-6, m = 0.01;  // 1/EI in 1/(N·mm²), tip mass kg
+  for (const Eigen::Vector3d g : {Eigen::Vector3d(9.81, 0, 0), Eigen::Vector3d(0, -9.81, 0)}) {
+    SpatialCellRodSpec spec;
+    spec.pieces = {segment(L, {linear_cell(10, {0, 0}, 0, c, 0), linear_cell(90, {0, 0}, 0, c, 0)})};
+    spec.gravity_m_s2 = g;
+    spec.tip_mass_kg = m;
+    const SpatialCellRodState s = solve_spatial_cell_rod(spec, 0.0);
+    REQUIRE(s.ok);
+    const Eigen::Vector3d F = m * g;  // N
+    // δ = F L³ / 3EI = 3.27e-4 L: the geometric nonlinearity is ~1e-7 of it.
+    const Eigen::Vector3d deflection = s.position.back() - Eigen::Vector3d::Zero();
+    CHECK(deflection.dot(F.normalized()) == Approx(F.norm() * L * L * L * c / 3).epsilon(1e-4));
+    const double delta = F.norm() * L * L * L * c / 3;
+    CHECK(std::abs(deflection.dot(F.normalized().cross(Eigen::Vector3d(0, 0, 1)))) < 1e-9);  // in the plane
+    // The tip rises by the arc's shortening, ∫ w'²/2 = (3/5) δ²/L for the cubic deflection.
+    CHECK(deflection.z() == Approx(0.6 * delta * delta / L).epsilon(1e-3));
+    // The tip's axis (−d3) turns towards the load by F L² / 2EI.
+    CHECK((-s.frame.back().col(2)).dot(F.normalized()) == Approx(F.norm() * L * L * c / 2).epsilon(1e-4));
+  }
+}
+
+TEST_CASE("In one plane the spatial cell rod poses a 3CA as the planar cell rod does", "[cell][rod]") {
+  // Cells with curvature and stretch varying along the height, heavy, with caps, under gravity
+  // against the bend and down the axis: the planar rod's bend is the spatial +x.
+  const double L = 160, cap = 3;
+  const std::vector<double> z = {2.7, 80, 157.3}, k = {0.012, 0.010, 0.007}, c = {2e-5, 1.5e-5, 1e-5};
+  std::vector<CellTable> planar;
+  std::vector<SpatialCellTable> spatial;
+  for (int i = 0; i < 3; ++i) {
+    spatial.push_back(linear_cell(z[i], {0, k[i]}, 0.1 - 0.02 * i, c[i], 2e-4 + 1e-4 * i));
+    CellTable t;
+    t.z_mm = z[i];
+    t.mass_per_length_kg_per_mm = spatial.back().mass_per_length_kg_per_mm;
+    t.pressure_kPa = {0, 150, 300};
+    for (int j = 0; j < 3; ++j) {
+      t.stretch.push_back(spatial.back().stretch[j]);
+      t.curvature_per_mm.push_back(spatial.back().curvature_per_mm[j].y());
+      t.bending_compliance_per_Nmm2.push_back(c[i]);
+    }
+    planar.push_back(t);
+  }
+  CellRodSpec p;
+  p.length_mm = L;
+  p.cap_mm = cap;
+  p.cells = planar;
+  p.gravity_along_bend_m_s2 = -9.81;
+  p.gravity_along_axis_m_s2 = -9.81;
+  p.intervals = 1280;
+  SpatialCellRodSpec s;
+  s.pieces = {segment(L, spatial, cap)};
+  s.gravity_m_s2 = Eigen::Vector3d(-9.81, 0, -9.81);
+  s.interval_mm = L / 1280;
+  for (double level : {0.0, 0.5, 1.0}) {
+    const CellRodState a = solve_cell_rod(p, 300 * level);
+    const SpatialCellRodState b = solve_spatial_cell_rod(s, level);
+    REQUIRE(a.ok);
+    REQUIRE(b.ok);
+    INFO("level " << level << ": planar tip (" << a.tip_along_bend_mm << ", " << a.tip_z_mm << "), spatial ("
+                  << b.position.back().transpose() << ")");
+    CHECK(b.position.back().x() == Approx(a.tip_along_bend_mm).margin(1e-3));
+    CHECK(b.position.back().z() == Approx(a.tip_z_mm).margin(1e-3));
+    CHECK(std::abs(b.position.back().y()) < 1e-9);
+    const double tilt = std::atan2(-b.frame.back()(0, 2), b.frame.back()(2, 2)) * 180 / 3.14159265358979323846;
+    CHECK(tilt == Approx(a.bending_angle_deg).margin(1e-3));
+  }
+  CHECK(spatial_cell_rod_mass_kg(s) == Approx(3e-4 * L).epsilon(1e-9));  // linear in z: its mid-height value
+}
+
+TEST_CASE("Past its cells' tables the spatial cell rod stops and says where", "[cell][rod]") {
+  SpatialCellRodSpec spec;
+  SpatialCellTable short_cell = linear_cell(50, {0, 0.01}, 0.1, 1e-5, 0);
+  short_cell.level.pop_back(), short_cell.stretch.pop_back(), short_cell.curvature_per_mm.pop_back();
+  short_cell.bending_compliance_per_Nmm2.pop_back(), short_cell.axial_compliance_per_N.pop_back();
+  spec.pieces = {segment(100, {short_cell})};
+  CHECK(solve_spatial_cell_rod(spec, 0.5).ok);
+  const SpatialCellRodState s = solve_spatial_cell_rod(spec, 0.75);
+  CHECK_FALSE(s.ok);
+  CHECK(s.diagnosis.find("z = 50") != std::string::npos);
+}
