@@ -3,8 +3,9 @@
 // fidelity ladder's reference: configs/convergence/spl_thesis_pose_axial3.json).
 //
 //   bench_spl_cell_rod [config] [--full] [--cell-levels N] [--threads N] [--compare summary.json]
-//                      [--torsion-scales 1,0.5,2] [--tables]
+//                      [--torsion-scales 1,0.5,2] [--tables] [--save-cells F | --load-cells F]
 //   --full: full-model cells even where a segment's pressures allow a half model
+//   --save-cells F / --load-cells F: keep the cells' tables in a JSON file / pose from one (no cells run)
 //   --tables: print every cell's table (stretch, curvature vector, compliances) at its outputs
 //   --torsion-scales: pose again with each segment's GJ times each factor (the cells once)
 #include <chrono>
@@ -16,16 +17,65 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include "fem/core/parallel.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
+#include "fem/scenes/tca_cell.hpp"
 
 using namespace softarm;
 
+namespace {
+nlohmann::json to_json(const fem::SpatialCellRodSpec& rod) {
+  nlohmann::json pieces = nlohmann::json::array();
+  for (const auto& p : rod.pieces) {
+    nlohmann::json cells = nlohmann::json::array();
+    for (const auto& c : p.cells) {
+      nlohmann::json k = nlohmann::json::array(), b = nlohmann::json::array();
+      for (const auto& v : c.curvature_per_mm) k.push_back({v.x(), v.y()});
+      for (const auto& m : c.bending_compliance_per_Nmm2) b.push_back({m(0, 0), m(0, 1), m(1, 0), m(1, 1)});
+      cells.push_back({{"z_mm", c.z_mm}, {"level", c.level}, {"stretch", c.stretch},
+                       {"axial_compliance_per_N", c.axial_compliance_per_N}, {"curvature_per_mm", k},
+                       {"bending_compliance_per_Nmm2", b}, {"torsion_compliance_per_Nmm2", c.torsion_compliance_per_Nmm2},
+                       {"mass_per_length_kg_per_mm", c.mass_per_length_kg_per_mm}});
+    }
+    pieces.push_back({{"length_mm", p.length_mm}, {"cap_mm", p.cap_mm}, {"mass_kg", p.mass_kg}, {"cells", cells}});
+  }
+  return {{"pieces", pieces}};
+}
+
+void read_tables(const nlohmann::json& j, fem::SpatialCellRodSpec& rod) {
+  rod.pieces.clear();
+  for (const auto& p : j.at("pieces")) {
+    fem::SpatialCellPiece piece;
+    piece.length_mm = p.at("length_mm");
+    piece.cap_mm = p.at("cap_mm");
+    piece.mass_kg = p.at("mass_kg");
+    for (const auto& c : p.at("cells")) {
+      fem::SpatialCellTable t;
+      t.z_mm = c.at("z_mm");
+      t.level = c.at("level").get<std::vector<double>>();
+      t.stretch = c.at("stretch").get<std::vector<double>>();
+      t.axial_compliance_per_N = c.at("axial_compliance_per_N").get<std::vector<double>>();
+      t.mass_per_length_kg_per_mm = c.at("mass_per_length_kg_per_mm");
+      t.torsion_compliance_per_Nmm2 = c.value("torsion_compliance_per_Nmm2", 0.0);
+      for (const auto& k : c.at("curvature_per_mm")) t.curvature_per_mm.emplace_back(k[0].get<double>(), k[1].get<double>());
+      for (const auto& b : c.at("bending_compliance_per_Nmm2")) {
+        Eigen::Matrix2d m;
+        m << b[0].get<double>(), b[1].get<double>(), b[2].get<double>(), b[3].get<double>();
+        t.bending_compliance_per_Nmm2.push_back(m);
+      }
+      piece.cells.push_back(t);
+    }
+    rod.pieces.push_back(piece);
+  }
+}
+}  // namespace
+
 int main(int argc, char** argv) {
-  std::string config = "configs/spl_thesis_pose.json", compare;
+  std::string config = "configs/spl_thesis_pose.json", compare, save_cells, load_cells;
   bool full = false, tables = false;
   int cell_levels = 16;
   std::vector<double> torsion_scales;
@@ -34,6 +84,8 @@ int main(int argc, char** argv) {
     if (a == "--compare" && i + 1 < argc) compare = argv[++i];
     else if (a == "--full") full = true;
     else if (a == "--tables") tables = true;
+    else if (a == "--save-cells" && i + 1 < argc) save_cells = argv[++i];
+    else if (a == "--load-cells" && i + 1 < argc) load_cells = argv[++i];
     else if (a == "--torsion-scales" && i + 1 < argc) {
       std::stringstream list(argv[++i]);
       for (std::string item; std::getline(list, item, ',');) torsion_scales.push_back(std::atof(item.c_str()));
@@ -49,7 +101,23 @@ int main(int argc, char** argv) {
   }
   fem::SplSceneSpec spec = scene.spl;
   if (full) spec.allow_symmetry = false;
-  const fem::SplCells cells = fem::spl_cells(spec, cell_levels);
+  fem::SplCells cells;
+  if (load_cells.empty()) {
+    cells = fem::spl_cells(spec, cell_levels);
+  } else {
+    cells.rod.gravity_m_s2 = spec.gravity_m_s2;
+    cells.rod.tip_mass_kg = spec.tip_mass_kg;
+    read_tables(nlohmann::json::parse(std::ifstream(load_cells)), cells.rod);
+    // Tables saved before the cells had their torsion: the cells' GJ now.
+    for (std::size_t p = 1; p < cells.rod.pieces.size(); p += 2)
+      for (auto& c : cells.rod.pieces[p].cells)
+        if (c.torsion_compliance_per_Nmm2 == 0) {
+          const fem::TcaSceneSpec scene = fem::spl_segment_cell_scene(spec, static_cast<int>(p / 2), cell_levels);
+          const int ring = static_cast<int>(std::lround(c.z_mm / scene.design.actuator.pitch() + 0.5));
+          c.torsion_compliance_per_Nmm2 = 1 / fem::cell_torsion_stiffness(scene, ring);
+        }
+  }
+  if (!save_cells.empty()) std::ofstream(save_cells) << to_json(cells.rod).dump(1);
   std::printf("%s: %d cells (largest %d dofs), %.1f s, threads %d\n", config.c_str(), cells.cells,
               cells.largest_cell_dofs, cells.seconds, fem::thread_count());
   for (int n = 0; n < 3; ++n) {
@@ -61,7 +129,7 @@ int main(int argc, char** argv) {
     for (const auto& piece : cells.rod.pieces)
       for (const auto& c : piece.cells) {
         std::printf("\ncell at z = %.3f mm (GJ %.4g N·mm²)\n%8s %10s %12s %12s %12s %12s %12s %12s %12s\n", c.z_mm,
-                    piece.torsion_stiffness_Nmm2, "level", "stretch", "kx_per_mm", "ky_per_mm", "Cxx", "Cxy", "Cyx",
+                    1 / c.torsion_compliance_per_Nmm2, "level", "stretch", "kx_per_mm", "ky_per_mm", "Cxx", "Cxy", "Cyx",
                     "Cyy", "C_axial");
         for (std::size_t i = 0; i < c.level.size(); ++i) {
           const auto& k = c.curvature_per_mm[i];
@@ -76,7 +144,8 @@ int main(int argc, char** argv) {
   int rc = 0;
   for (double scale : torsion_scales) {
     fem::SplCells scaled = cells;
-    for (auto& piece : scaled.rod.pieces) piece.torsion_stiffness_Nmm2 *= scale;
+    for (auto& piece : scaled.rod.pieces)
+      for (auto& c : piece.cells) c.torsion_compliance_per_Nmm2 /= scale;
     const fem::SplCellRodResult r = fem::pose_spl_cell_rod(scaled, spec.output_levels);
     std::printf("\nGJ x %.3g: rod %.3f s; mass %.1f g\n", scale, r.rod_seconds, 1e3 * r.mass_kg);
     std::printf("%10s %10s %10s %10s %10s %6s\n", "level", "tip_x_mm", "tip_y_mm", "tip_z_mm", "tilt_deg", "iter");
@@ -97,6 +166,25 @@ int main(int argc, char** argv) {
         std::printf("   reference (%8.2f, %8.2f, %8.2f), %6.1f mm off", q[0].get<double>(), q[1].get<double>(),
                     q[2].get<double>(), d);
         if (j > 0) sum += d, ++count;  // the shoulder is clamped in both
+      }
+      std::printf("\n");
+    }
+    // Each segment's own bend: the rotation from its top joint's frame to its bottom joint's.
+    for (std::size_t j = 0; j + 1 < r.joints.size(); j += 2) {
+      const Eigen::Matrix3d rel = r.joints[j].pose.rotation.transpose() * r.joints[j + 1].pose.rotation;
+      const Eigen::AngleAxisd a(rel);
+      std::printf("segment %zu bends %7.2f° about (%6.3f, %6.3f, %6.3f) in its top frame", j / 2 + 1,
+                  a.angle() * 57.29577951308232, a.axis().x(), a.axis().y(), a.axis().z());
+      if (!reference.is_null()) {
+        Eigen::Matrix3d top, bottom;
+        for (int i = 0; i < 3; ++i)
+          for (int k = 0; k < 3; ++k) {
+            top(i, k) = reference["joints"][j]["rotation_matrix"][i][k].get<double>();
+            bottom(i, k) = reference["joints"][j + 1]["rotation_matrix"][i][k].get<double>();
+          }
+        const Eigen::AngleAxisd b(top.transpose() * bottom);
+        std::printf("; reference %7.2f° about (%6.3f, %6.3f, %6.3f)", b.angle() * 57.29577951308232, b.axis().x(),
+                    b.axis().y(), b.axis().z());
       }
       std::printf("\n");
     }

@@ -4,6 +4,8 @@
 //
 //   bench_tca_cell [config] [--rings 1,15,30] [--axial-level N] [--threads N]
 //                  [--compare curve.csv]   (a `softarm simulate` curve of the same 3CA)
+//                  [--moment-Nmm Mx,My]    (a dead end moment on every cell besides the pressures:
+//                                           how far the cells' linear compliance carries)
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -24,11 +26,17 @@ using namespace softarm;
 int main(int argc, char** argv) {
   std::string config = "configs/tca_thesis.json", rings_arg, compare;
   int axial_level = -1;
+  fem::CellEndLoad end_load;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--rings" && i + 1 < argc) rings_arg = argv[++i];
     else if (a == "--axial-level" && i + 1 < argc) axial_level = std::atoi(argv[++i]);
     else if (a == "--compare" && i + 1 < argc) compare = argv[++i];
+    else if (a == "--moment-Nmm" && i + 1 < argc) {
+      double mx = 0, my = 0;
+      std::sscanf(argv[++i], "%lf,%lf", &mx, &my);
+      end_load.moment_Nmm = Eigen::Vector2d(mx, my);
+    }
     else if (a == "--threads" && i + 1 < argc) fem::set_thread_count(std::atoi(argv[++i]));
     else config = a;
   }
@@ -49,23 +57,26 @@ int main(int argc, char** argv) {
   std::vector<fem::TcaCellResult> cells;
   double cell_seconds = 0;
   for (int ring : rings) {
-    const auto r = fem::run_tca_cell(spec, ring);
+    const auto r = fem::run_tca_cell(spec, ring, end_load);
     cells.push_back(r);
     cell_seconds += r.seconds;
     std::printf("\nring %d at z = %.3f mm: %s, %s, %d dofs, %d steps, %d Newton, %.1f s; %s%s\n", ring,
                 r.ring_centre_z_mm, r.model.name.c_str(), r.element_name.c_str(), r.dofs, r.path.path.stats.steps,
                 r.path.path.stats.newton_iterations, r.seconds, fem::to_string(r.path.outcome),
                 r.path.diagnosis.empty() ? "" : (": " + r.path.diagnosis).c_str());
-    std::printf("%12s %10s %14s %14s %12s %10s %14s %12s\n", "pressure_kPa", "stretch", "curv_deg_mm", "deg_per_pitch",
-                "volume_mm3", "gap_mm", "EI_Nmm2", "EA_N");
+    std::printf("%12s %10s %14s %14s %12s %10s %14s %12s %12s %12s %12s %12s\n", "pressure_kPa", "stretch", "curv_deg_mm", "deg_per_pitch",
+                "volume_mm3", "gap_mm", "EI_Nmm2", "EA_N", "kx_per_mm", "ky_per_mm", "Cxx", "Cyy");
     for (const auto& s : r.states) {
       std::printf("%12.2f %10.5f %14.6f %14.4f %12.1f %10.2e", s.pressure_kPa, s.stretch,
                   s.curvature_per_mm * 180 / 3.14159265358979, s.curvature_per_mm * r.pitch_mm * 180 / 3.14159265358979,
                   s.chamber_volume_mm3, s.plane_gap_mm);
       if (s.bending_compliance_per_Nmm2 > 0)
-        std::printf(" %14.1f %12.2f\n", 1 / s.bending_compliance_per_Nmm2, 1 / s.axial_compliance_per_N);
+        std::printf(" %14.1f %12.2f", 1 / s.bending_compliance_per_Nmm2, 1 / s.axial_compliance_per_N);
       else
-        std::printf(" %14s %12s\n", s.is_output ? "-" : "", s.is_output ? "-" : "");
+        std::printf(" %14s %12s", s.is_output ? "-" : "", s.is_output ? "-" : "");
+      const auto& c = s.bending_compliance_matrix_per_Nmm2;
+      std::printf(" %12.4e %12.4e %12.4e %12.4e\n", s.curvature_vector_per_mm.x(), s.curvature_vector_per_mm.y(), c(0, 0),
+                  c(1, 1));
     }
   }
   // The cell rod along the config's outputs, with the config's gravity and without.

@@ -6,6 +6,7 @@
 #include "engine/output_files.hpp"
 #include "engine/spl_report.hpp"
 #include "fem/reduced/reduced_scenes.hpp"
+#include "fem/scenes/spl_cell_rod.hpp"
 #include "fem/scenes/tca_cell.hpp"
 
 namespace softarm::engine {
@@ -99,10 +100,41 @@ int simulate_cell_rod_tca(const fem::SceneConfig& config) {
   return r.converged ? 0 : 1;
 }
 
+int simulate_cell_rod_spl(const fem::SceneConfig& config) {
+  const auto& dir = config.output.directory;
+  std::cout << "cell rod: ring-pitch cells of each segment about its first, middle and last rings\n";
+  const fem::SplCells c = fem::spl_cells(config.spl);
+  const fem::SplCellRodResult r = fem::pose_spl_cell_rod(c, config.spl.output_levels);
+  nlohmann::json cells = nlohmann::json::array();
+  for (int n = 0; n < 3; ++n) {
+    std::cout << "segment " << n + 1 << ": rings";
+    for (int ring : c.rings[n]) std::cout << " " << ring;
+    std::cout << (c.half_model[n] ? ", half model" : ", full model") << "\n";
+    cells.push_back({{"segment", n + 1}, {"rings", c.rings[n]}, {"half_model", c.half_model[n]}});
+  }
+  std::cout << std::setprecision(3) << c.cells << " cells (up to " << c.largest_cell_dofs << " dofs) in " << c.seconds
+            << " s, the rod " << r.rod_seconds << " s\n";
+  SplCurveWriter writer(dir, std::cout);
+  for (const auto& s : r.curve) writer.add(s);
+  std::cout << "\noutcome: " << (r.converged ? "completed" : "stopped — " + r.diagnosis) << "\n";
+  print_joint_table(r.joints, std::cout);
+  std::cout << std::setprecision(1) << "mass: " << 1e3 * r.mass_kg << " g (cells' smeared mass and connectors)\n";
+  std::cout.unsetf(std::ios::floatfield);
+  write_json_file(dir, "summary.json",
+                  {{"scene", "spl"}, {"model", model_json(config)}, {"outcome", fem::to_string(r.outcome)},
+                   {"diagnosis", r.diagnosis}, {"reached_load_fraction", r.reached_level},
+                   {"joints", joints_json(r.joints)}, {"mass_kg", r.mass_kg}, {"cells", cells},
+                   {"largest_cell_dofs", c.largest_cell_dofs}, {"cell_seconds", c.seconds},
+                   {"rod_seconds", r.rod_seconds}});
+  std::cout << "written: " << dir << "/curve.csv, " << dir << "/summary.json\n";
+  return r.converged ? 0 : 1;
+}
+
 }  // namespace
 
 int simulate_reduced(const fem::SceneConfig& config) {
   if (config.scene == "tca" && config.cell_rod) return simulate_cell_rod_tca(config);
+  if (config.scene == "spl" && config.cell_rod) return simulate_cell_rod_spl(config);
   if (config.scene == "spl") return simulate_reduced_spl(config);
   if (config.scene == "rra") {
     const fem::ReducedRraResult r = fem::run_reduced_rra(config.rra);

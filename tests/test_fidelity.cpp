@@ -92,14 +92,17 @@ TEST_CASE("a scene's fidelity request picks the cheapest level that meets it", "
   CHECK(c.spl.axial_level == 3);
   CHECK(c.spl.serendipity);
   CHECK(c.spl.integration == ElementIntegration::full);
-  spl["model"] = {{"target_error_percent", 5.0}};
+  spl["model"] = {{"target_error_percent", 3.0}};
   c = read_scene_config(spl);
+  CHECK_FALSE(c.reduced);
   CHECK(c.spl.axial_level == 2);  // level 1 with level 2's layers: 2.2 %
   CHECK(c.spl.integration == ElementIntegration::full);
-  spl["model"] = {{"target_error_percent", 6.5}};
+  spl["model"] = {{"target_error_percent", 5.0}};  // the config's own request
   c = read_scene_config(spl);
-  CHECK(c.spl.axial_level == 0);  // Hex20 at 2x2x2 points, level 1: 6.1 %
-  CHECK(c.spl.integration == ElementIntegration::reduced);
+  CHECK(c.reduced);  // the cell rod, 4.2 %, on cells of the 3CA ladder's cell-rod rung
+  CHECK(c.cell_rod);
+  CHECK(c.spl.axial_level == 4);
+  CHECK(read_scene_config(thesis_scene("spl_thesis_pose.json")).cell_rod);
 }
 
 TEST_CASE("a fidelity request beside a hand-set mesh, or two requests, is refused with the field named", "[fidelity]") {

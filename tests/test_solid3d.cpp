@@ -21,6 +21,7 @@
 #include "fem/elements/hexahedron.hpp"
 #include "fem/elements/serendipity_quad.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
+#include "fem/forms/periodic_face_form.hpp"
 #include "fem/forms/plane_face_form.hpp"
 #include "fem/mesh/chamber_lids.hpp"
 #include "fem/mesh/quadratic_mesh.hpp"
@@ -196,6 +197,43 @@ TEST_CASE("Plane face form: gradient and Hessian match finite differences", "[so
   for (int n : top) on_plane[3 * n + 2] = 1.0 + 0.05 - 0.2 * x[3 * n] + 0.15 * x[3 * n + 1];
   CHECK(plane->max_gap(on_plane) < 1e-15);
   CHECK(problem.evaluate(on_plane, true, false).gradient.norm() < 1e-13);
+}
+
+TEST_CASE("Periodic face form: derivatives match finite differences, and a uniform twist and stretch cost nothing",
+          "[solid3d][cell]") {
+  const Mesh mesh = box({2, 1, 1}, 2, 1, 1, 1.0, 20);
+  std::vector<int> top, bottom;
+  for (int n = 0; n < mesh.num_nodes(); ++n) {
+    if (mesh.X(n, 2) == 1.0) top.push_back(n);
+    if (mesh.X(n, 2) == 0.0) bottom.push_back(n);
+  }
+  const int n = mesh.num_nodes();
+  Vector X(3 * (n + 2));
+  X << flattened_positions(mesh), Vector::Zero(6);
+  const auto pairs = facing_nodes(top, bottom, X);
+  REQUIRE(pairs.size() == top.size());
+  EnergyProblem problem(X, DirichletConstraints{});
+  problem.add_form(std::make_shared<PeriodicFaceForm>(pairs, X, n, n + 1, 2.3));
+  problem.finalize();
+  Vector x = test::perturbed(X, 0.1);
+  x.tail<6>() << 0.02, -0.03, 0.1, 0.05, -0.2, 0.15;
+  const auto err = test::finite_difference_errors(problem, x, 1e-6);
+  INFO("gradient error " << err.gradient << ", Hessian error " << err.hessian);
+  CHECK(err.gradient < 1e-6);
+  CHECK(err.hessian < 1e-6);
+  // u = (−θ z y, θ z x, ε z) is periodic with φ = θ·1, a = ε·1 over the unit height: no residual.
+  const double theta = 0.07, eps = 0.04;
+  Vector twisted = X;
+  for (int k = 0; k < n; ++k) {
+    const double px = X[3 * k], py = X[3 * k + 1], pz = X[3 * k + 2];
+    twisted.segment<3>(3 * k) += Eigen::Vector3d(-theta * pz * py, theta * pz * px, eps * pz);
+  }
+  twisted.tail<6>() << 0, 0, theta, eps, 0, 0;
+  CHECK(problem.evaluate(twisted, true, false).gradient.norm() < 1e-13);
+  twisted[3 * n + 2] += 1e-3;  // another twist on the pilot than in the body
+  CHECK(problem.evaluate(twisted, true, false).gradient.norm() > 1e-4);
+  // A top face that is no copy of the bottom one has no pairs.
+  CHECK_THROWS_AS(facing_nodes(top, {bottom.front()}, X), std::invalid_argument);
 }
 
 TEST_CASE("3D patch test: a distorted box reproduces a non-symmetric homogeneous deformation", "[solid3d]") {

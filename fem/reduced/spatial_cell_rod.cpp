@@ -38,7 +38,7 @@ std::string sections_at(const SpatialCellRodSpec& spec, double t, std::vector<In
       for (int i = 0; i < n; ++i) out.push_back({Vec3::Zero(), 1, Eigen::Matrix2d::Zero(), 0, 0, dz, piece.mass_kg / n});
       continue;
     }
-    std::vector<double> z, stretch, axial, mass;
+    std::vector<double> z, stretch, axial, mass, torsion;
     std::vector<Eigen::Vector2d> curvature;
     std::vector<Eigen::Matrix2d> bending;
     for (const SpatialCellTable& c : piece.cells) {
@@ -51,6 +51,7 @@ std::string sections_at(const SpatialCellRodSpec& spec, double t, std::vector<In
                std::to_string(c.level.empty() ? 0.0 : c.level.back()) + " of its pressures only";
       z.push_back(c.z_mm), stretch.push_back(*l), curvature.push_back(*k), bending.push_back(*b);
       axial.push_back(*a), mass.push_back(c.mass_per_length_kg_per_mm);
+      torsion.push_back(c.torsion_compliance_per_Nmm2);
     }
     // From the piece's top (its z = length) down.
     for (int i = 0; i < n; ++i) {
@@ -64,7 +65,7 @@ std::string sections_at(const SpatialCellRodSpec& spec, double t, std::vector<In
       }
       s.bending = lagrange(z, bending, zi);
       s.axial = lagrange(z, axial, zi);
-      s.torsion = piece.torsion_stiffness_Nmm2 > 0 ? 1 / piece.torsion_stiffness_Nmm2 : 0;
+      s.torsion = lagrange(z, torsion, zi);
       s.length = dz;
       s.mass = lagrange(z, mass, zi) * dz;
       out.push_back(s);

@@ -7,7 +7,7 @@
 // load level and by Lagrange through the cells in height (cell_interpolation.hpp), and
 // integrates from the clamp down the reference height Z (the material frame R is the scene
 // frame at rest, d3 = +z towards the clamp):
-//     κ = κ₀(Z, t) + C(Z, t)·(Rᵀ M)_xy + (Rᵀ M)_z / GJ · e3,   λ = λ₀(Z, t) + c_N(Z, t)·N,
+//     κ = κ₀(Z, t) + C(Z, t)·(Rᵀ M)_xy + (Rᵀ M)_z / GJ(Z) · e3,   λ = λ₀(Z, t) + c_N(Z, t)·N,
 //     R(Z − ΔZ) = R(Z)·exp(−ΔZ [κ]×),   r(Z − ΔZ) = r(Z) − ΔZ·λ·R(Z − ΔZ/2)·e3,
 // where M is the moment on the part below Z from the part above (M = −Σ (r_j − r) × f_j over
 // the weights f_j below) and N = −(Σ f_j)·R e3 its tension. The weights' moments follow the
@@ -17,8 +17,8 @@
 //
 // Left out, by construction: the caps' and clamp's disturbance of the sections next to
 // them (the planar cell rod's +3 % at low pressure on the thesis 3CA), the taper within
-// one pitch, shear, and the coupling of torsion with the pressures (GJ is given per piece,
-// not from the cells, whose end planes cannot twist).
+// one pitch, shear, the pressures' effect on GJ (the cells' torsion is taken at rest) and
+// any coupling of twist with bending or stretch.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -32,6 +32,7 @@ struct SpatialCellTable {
   std::vector<double> level, stretch, axial_compliance_per_N;
   std::vector<Eigen::Vector2d> curvature_per_mm;
   std::vector<Eigen::Matrix2d> bending_compliance_per_Nmm2;
+  double torsion_compliance_per_Nmm2 = 0;  // 1/GJ at rest (0: rigid in torsion)
   double mass_per_length_kg_per_mm = 0;
 };
 
@@ -39,7 +40,6 @@ struct SpatialCellPiece {
   double length_mm = 0;
   std::vector<SpatialCellTable> cells;  // empty: a rigid connector
   double cap_mm = 0;                    // segment: solid cap at each end
-  double torsion_stiffness_Nmm2 = 0;    // segment: GJ (0: rigid in torsion)
   double mass_kg = 0;                   // connector: its mass
 };
 

@@ -30,8 +30,8 @@ struct ModelLevel {
   bool serendipity = false;       // 3D: Hex20 instead of Hex27 (element_order 2)
   bool reduced_integration = false;  // 3D Hex20 at 2×2×2 Gauss points
   int axial_level = 0;            // 3D: element layers along the axis as at this level (mesh.axial_level); 0: mesh_level
-  /// With `reduced`: the cell rod (fem/reduced/cell_rod.hpp), whose ring-pitch cells are 3D
-  /// models of the mesh settings above, instead of the fibre-section rod.
+  /// With `reduced`: the cell rod (fem/reduced/cell_rod.hpp; the SPL's spatial_cell_rod.hpp), whose
+  /// ring-pitch cells are 3D models of the mesh settings above, instead of the fibre-section rod.
   bool cell_rod = false;
 };
 
@@ -44,7 +44,8 @@ const FidelityLadder& fidelity_ladder(const std::string& scene);
 
 /// The "target" of fidelity "fast": the cheapest model of the ladder, whatever its measured error
 /// (which is printed with it). A percentage would pick a slow model where the reduced one misses it:
-/// the SPL's spatial rod is 43 % off, and every 3D rung but a locking preview takes 17 to 47 minutes.
+/// the SPL's spatial rod is 44 % off, its cell rod 8 % at ~3 minutes, and every 3D rung but a locking
+/// preview takes 17 to 96 minutes.
 inline constexpr double kCheapestModel = std::numeric_limits<double>::infinity();
 
 /// Target error of a named fidelity: fast kCheapestModel, balanced 2 %, accurate 0.5 %.

@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 
-#include "fem/reduced/cell_section.hpp"
 #include "fem/reduced/rod_layout.hpp"
 #include "fem/scenes/tca_cell.hpp"
 
@@ -12,9 +11,9 @@ namespace softarm::fem {
 namespace {
 constexpr double kDeg = 57.295779513082320876;
 
-/// Segment n's (0..2) 3CA scene for its cells: its design, the arm's materials, its three
-/// pressures, outputs every 1/cell_levels of its ramp, the cell-rod rung's mesh.
-TcaSceneSpec segment_scene(const SplSceneSpec& spec, int n, int cell_levels) {
+}  // namespace
+
+TcaSceneSpec spl_segment_cell_scene(const SplSceneSpec& spec, int n, int cell_levels) {
   TcaSceneSpec s;
   s.design = spec.design.segments[n];
   s.tube_material = spec.tube_material;
@@ -32,6 +31,8 @@ TcaSceneSpec segment_scene(const SplSceneSpec& spec, int n, int cell_levels) {
   use_cell_rod_rung_mesh(s);
   return s;
 }
+
+namespace {
 
 /// A cell's output states as the spatial rod's table, along the load level (an unloaded cell's
 /// one state holds at every level).
@@ -57,16 +58,6 @@ SpatialCellTable spatial_table(const TcaCellResult& cell, double peak_kPa) {
   return t;
 }
 
-/// The segment's torsional stiffness GJ at mid-height, as the spatial rod's (spatial_rod.hpp):
-/// Σ μ₀ A |ξ|² over the section's cells (the polar moment of the lobed section).
-double torsion_stiffness(const TcaDesign& design, const Material& tube, const Material& sheath) {
-  double gj = 0;
-  for (const FibreCell& c : tca_cell_section(design, 0.5 * design.actuator.length_mm).cells)
-    gj += (c.tube_area * tube.law->initial_shear_modulus() + c.sheath_area * sheath.law->initial_shear_modulus()) *
-          c.xi.squaredNorm();
-  return gj;
-}
-
 FacePose pose_at(const SpatialCellRodState& s, int node) {
   const double c = std::clamp(s.frame[node].col(2).z(), -1.0, 1.0);
   return {s.position[node], s.frame[node], std::acos(c) * kDeg};
@@ -87,11 +78,10 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels) {
       continue;
     }
     const int n = static_cast<int>(out.rod.pieces.size()) / 2;
-    const TcaSceneSpec scene = segment_scene(spec, n, cell_levels);
+    const TcaSceneSpec scene = spl_segment_cell_scene(spec, n, cell_levels);
     const double peak = *std::max_element(scene.chamber_pressure_kPa.begin(), scene.chamber_pressure_kPa.end());
     p.length_mm = scene.design.actuator.length_mm;
     p.cap_mm = scene.design.actuator.end_cap_thickness_mm;
-    p.torsion_stiffness_Nmm2 = torsion_stiffness(scene.design, spec.tube_material, spec.sheath_material);
     out.rings[n] = cell_rod_rings(scene.design.actuator.ring_count);
     if (out.rings[n].empty()) {
       out.failure = "segment " + std::to_string(n + 1) + " has no rings: the cell rod needs a ring pitch";
@@ -107,7 +97,14 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels) {
       if (cell.path.outcome != PathOutcome::completed)
         out.notes += " (segment " + std::to_string(n + 1) + ", ring " + std::to_string(ring) + ": " +
                      cell.path.diagnosis + ")";
+      const double gj = cell_torsion_stiffness(scene, ring);
+      if (!(gj > 0)) {
+        out.failure = "segment " + std::to_string(n + 1) + ", ring " + std::to_string(ring) +
+                      ": the cell's tangent at rest is not positive definite (no torsional stiffness)";
+        return out;
+      }
       p.cells.push_back(spatial_table(cell, peak));
+      p.cells.back().torsion_compliance_per_Nmm2 = 1 / gj;
     }
     out.rod.pieces.push_back(p);
   }

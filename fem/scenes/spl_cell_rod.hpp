@@ -3,7 +3,8 @@
 // ring-pitch cells (tca_cell.hpp) about its first, middle and last rings, under that segment's
 // own three chamber pressures ramped from 0 to their peaks; the rod then poses the arm under
 // gravity in any direction and the tip mass, at rest and at every output level, in about a
-// millisecond per level. The cells take the mesh of the 3CA ladder's cell-rod rung (Hex20/P1
+// millisecond per level. Each cell's torsional stiffness comes from the same cell with
+// periodic faces at rest (tca_cell.hpp, cell_torsion_stiffness). The cells take the mesh of the 3CA ladder's cell-rod rung (Hex20/P1
 // at 27 points, level 1 cross-section, level 4's layers), a half model where a segment's
 // pressures are mirror-symmetric (a lone chamber, two equal ones, none), else the full one.
 #include <array>
@@ -14,6 +15,11 @@
 #include "fem/scenes/spl_scene.hpp"
 
 namespace softarm::fem {
+
+/// Segment n's (0..2) 3CA scene for its cells: its design, the arm's materials, its three
+/// pressures (outputs every 1/cell_levels of their ramp), the SPL's solver settings and the
+/// 3CA ladder's cell-rod mesh.
+TcaSceneSpec spl_segment_cell_scene(const SplSceneSpec& spec, int n, int cell_levels);
 
 /// Each segment's cells as the rod's tables: the expensive part, which depends on the design,
 /// the materials and each segment's pressures only (not on gravity or the tip mass).

@@ -5,6 +5,7 @@
 #include <limits>
 #include <memory>
 
+#include "fem/forms/periodic_face_form.hpp"
 #include "fem/forms/plane_face_form.hpp"
 #include "fem/scenes/fidelity.hpp"
 #include "fem/mesh/tca_mesher.hpp"
@@ -192,6 +193,53 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
+}
+
+double cell_torsion_stiffness(const TcaSceneSpec& spec, int ring) {
+  TcaSceneSpec full = spec;
+  full.allow_symmetry = false;  // a twist is not mirror-symmetric
+  full.chamber_pressure_kPa = {0, 0, 0};
+  full.gravity_m_s2.setZero();
+  const ModelChoice model = choose_tca_model(full);
+  const Mesh mesh = mesh_tca_cell(full.design, ring, solid_mesh_options(full, model));
+  const std::vector<Material> materials = tca_part_materials(full);
+  const int n = mesh.num_nodes(), twist_pilot = n, bend_pilot = n + 1;
+  Vector X = Vector::Zero(3 * (n + 2));
+  X.head(3 * n) = flattened_positions(mesh);
+  // The whole cell's rigid motions: the bottom node nearest the axis holds x, y, z; the one
+  // farthest from it its tangential direction and z; the one most across from that its z.
+  const std::vector<int>& bottom = mesh.node_sets.at("bottom");
+  int centre = bottom.front(), far = bottom.front(), across = bottom.front();
+  for (int b : bottom) {
+    if (mesh.X.row(b).head<2>().norm() < mesh.X.row(centre).head<2>().norm()) centre = b;
+    if (mesh.X.row(b).head<2>().norm() > mesh.X.row(far).head<2>().norm()) far = b;
+  }
+  const Eigen::Vector2d f = mesh.X.row(far).head<2>().transpose();
+  for (int b : bottom) {
+    const auto cross = [&](int node) { return std::abs(f.x() * mesh.X(node, 1) - f.y() * mesh.X(node, 0)); };
+    if (cross(b) > cross(across)) across = b;
+  }
+  DirichletConstraints bc;
+  for (int d = 0; d < 3; ++d) bc.fix(3 * centre + d);
+  bc.fix(3 * far + (std::abs(f.x()) < std::abs(f.y()) ? 0 : 1));
+  bc.fix(3 * far + 2);
+  bc.fix(3 * across + 2);
+  EnergyProblem problem(X, bc);
+  problem.add_form(make_elastic_form(mesh, materials, VolumetricTreatment::projected_dilatation,
+                                     hex20_integration(mesh, full.integration)));
+  double mu = 0;
+  for (std::size_t p = 0; p < materials.size(); ++p)
+    if (mesh.part_names[p] != "rings") mu = std::max(mu, materials[p].law->initial_shear_modulus());
+  problem.add_form(std::make_shared<PeriodicFaceForm>(facing_nodes(mesh.node_sets.at("top"), bottom, X, 1e-9), X,
+                                                      twist_pilot, bend_pilot, kPlanePenaltyRatio * mu));
+  problem.finalize();
+  LinearSolver solver;
+  if (solver.factorize(problem.evaluate(X, false, true).hessian) != LinearSolver::Status::positive_definite)
+    return std::nan("");
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.num_dofs());
+  u[3 * twist_pilot + 2] = 1;  // a unit torque on φ
+  problem.zero_prescribed(u);
+  return spec.design.actuator.pitch() / u.dot(solver.solve(u));  // GJ = L / (dφ/dT)
 }
 
 CellTable cell_table(const TcaCellResult& cell) {

@@ -70,6 +70,12 @@ struct CellEndLoad {
 /// mesh, chamber pressures, outputs and solver settings; spec.gravity is ignored.
 TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad& end_load = {});
 
+/// The cell's torsional stiffness GJ (N·mm²) at rest: the full cell about `ring` with periodic
+/// faces (periodic_face_form.hpp; warping free, the same on both), the linear twist per unit
+/// torque. This is Saint-Venant's torsion of the ringed 3CA, rings and chambers included; NaN
+/// where the tangent is not positive definite.
+double cell_torsion_stiffness(const TcaSceneSpec& spec, int ring);
+
 /// A cell's output states as a table for the cell rod (cell_rod.hpp): those with a
 /// positive definite tangent, in order.
 CellTable cell_table(const TcaCellResult& cell);
