@@ -9,7 +9,10 @@
 #include <cstdint>
 #include <cstring>
 #include <span>
+#include <stdexcept>
+#include <vector>
 
+#include "fem/core/parallel.hpp"
 #include "fem/forms/elastic_form.hpp"
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/load_stepper.hpp"
@@ -481,4 +484,22 @@ TEST_CASE("a plain first step that fails on indefinite tangents does not make th
   REQUIRE(!r.stats.failed_levels.empty());
   CHECK(r.stats.failed_levels.front() == 1.0);
   CHECK(r.stats.halved_steps == 0);
+}
+
+TEST_CASE("parallel_tasks runs every task once, one thread each, and hands back the first failure", "[solver]") {
+  const int saved = thread_count();
+  set_thread_count(2);
+  std::vector<int> runs(7, 0), threads_seen(7, 0);
+  parallel_tasks(7, [&](int i) {
+    ++runs[i];
+    threads_seen[i] = thread_count();
+  });
+  for (int i = 0; i < 7; ++i) {
+    CHECK(runs[i] == 1);
+    CHECK(threads_seen[i] == 1);  // the tasks' own assembly and BLAS stay serial
+  }
+  CHECK(thread_count() == 2);  // restored
+  CHECK_THROWS_WITH(parallel_tasks(3, [](int i) { if (i == 1) throw std::runtime_error("task 1"); }), "task 1");
+  CHECK(thread_count() == 2);
+  set_thread_count(saved);
 }

@@ -1,6 +1,9 @@
 #include "fem/core/parallel.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
 #include <cstdlib>
 #include <thread>
 #include <vector>
@@ -35,6 +38,35 @@ void parallel_for(int n, const std::function<void(int, int, int)>& body) {
   }
   body(0, std::min(n, chunk), 0);
   for (auto& th : pool) th.join();
+}
+
+void parallel_tasks(int n, const std::function<void(int)>& task) {
+  const int threads = std::min(g_threads, n);
+  if (threads <= 1) {
+    for (int i = 0; i < n; ++i) task(i);
+    return;
+  }
+  const int saved = g_threads;
+  g_threads = 1;
+  std::atomic<int> next{0};
+  std::exception_ptr failure;
+  std::mutex failure_mutex;
+  const auto worker = [&] {
+    for (int i = next++; i < n; i = next++) {
+      try {
+        task(i);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(failure_mutex);
+        if (!failure) failure = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& th : pool) th.join();
+  g_threads = saved;
+  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace softarm::fem

@@ -42,7 +42,8 @@ FidelityLadder rra_ladder() {
 // - the rod: 21.0 % (37.40° against 47.36° at 150 kPa), +6.9 % at 90° (297.2 kPa); on the main job's
 //   optimised designs it is 22-48 % off (README, "Where the rod's error comes from");
 // - the cell rod (fem/reduced/cell_rod.hpp) on cells about rings 1, 15 and 30, each Hex20/P1 at 27
-//   points with level 4's layers (8,943 dofs, ~17 s each to 300 kPa, both threads, idle): +3.0 % at
+//   points with level 4's layers (8,943 dofs, ~17 s each to 300 kPa, both threads, idle; 35 s for the
+//   three side by side, one thread each, to 344.7 kPa on configs/tca_thesis.json): +3.0 % at
 //   60 kPa (16.25° against 15.78°), +2.4 % at 90 kPa, within 1.9 % from 120 kPa on (−1.2 % at 300 kPa);
 //   90° at 280.6 kPa (+0.9 %); its sag under its weight −3.43° against −3.36°. Without gravity against
 //   the same mesh run weightless: +2.6 % at 60 kPa to −0.8 % at 300 kPa. `bench_tca_cell
@@ -64,7 +65,7 @@ FidelityLadder tca_ladder() {
             "bending angle along the curve (worst point; 90° pressure: 6.9 %); on other designs up to 48 % (README)", 0.05,
             51},
            {"cell rod: 3 ring-pitch cells (3D, level 4 layers)", true, 1, 2, 3.0,
-            "bending along the curve (90° pressure: 0.9 %)", 50, 8943, true, false, 4, true},
+            "bending along the curve (90° pressure: 0.9 %)", 35, 8943, true, false, 4, true},
            {"3D Hex20/P1 at 2x2x2 Gauss points, level 1", false, 1, 2, 0.85,
             "bending along the curve (90° pressure: 0.3 %)", 202, 43992, true, true},
            {"3D Hex20/P1, level 1, layers of level 4", false, 1, 2, 0, "reference", 429, 173574, true, false, 4}}};
@@ -85,8 +86,8 @@ FidelityLadder tca_ladder() {
 //   the reference before this version): 10.3 mm, 2.2 %; joints 5.1 mm off on average.
 // - The cell rod on ring-pitch cells (fem/scenes/spl_cell_rod.hpp: 9 cells, Hex20/P1 at 27 points,
 //   level 1, level 4's layers; half models where a segment's pressures allow, 8,943 dofs, else full,
-//   16,593 dofs; each cell's GJ from the same cell with periodic faces at rest; 194 s wall, 185 s of
-//   cells, the rod 25 ms for six poses; configs/spl_thesis_pose.json's default since this version):
+//   16,593 dofs; each cell's GJ from the same cell with periodic faces at rest; 112 s, the cells side by
+//   side on one thread each (170-185 s one after another on both threads), the rod 25 ms for six poses; configs/spl_thesis_pose.json's default since this version):
 //   tip 20.2 mm, 4.2 %; joints 9.5 mm off on average; each segment's own bend 65.82°, 84.77°, 18.11°
 //   against 67.79°, 86.08°, 20.03°. Measured on the way there (bench_spl_cell_rod --compare <reference
 //   summary.json> [--full] [--torsion-scales ...]):
@@ -115,7 +116,7 @@ FidelityLadder spl_ladder() {
             228},
            {"3D Hex8/P0, level 1 (preview: locks in bending)", false, 1, 1, 68, "3CA bending at 344.7 kPa", 48, 66132},
            {"cell rod: 3 ring-pitch cells per segment (3D, level 4 layers)", true, 1, 2, 4.2,
-            tip + " (joints 9.5 mm off on average; with full-model cells 9.0 %)", 194, 16593, true, false, 4, true},
+            tip + " (joints 9.5 mm off on average; with full-model cells 9.0 %)", 112, 16593, true, false, 4, true},
            {"3D Hex20/P1, level 1, layers of level 2", false, 1, 2, 2.2, tip + " (joints 5.1 mm off on average)", 2845,
             510318, true, false, 2},
            {"3D Hex20/P1, level 1, layers of level 3", false, 1, 2, 0, "reference", 5785, 764472, true, false, 3}}};

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "fem/core/parallel.hpp"
 #include "fem/reduced/rod_layout.hpp"
 #include "fem/scenes/tca_cell.hpp"
 
@@ -65,10 +66,18 @@ FacePose pose_at(const SpatialCellRodState& s, int node) {
 }  // namespace
 
 SplCells spl_cells(const SplSceneSpec& spec, int cell_levels) {
+  const auto t0 = std::chrono::steady_clock::now();
   SplCells out;
   out.rod.gravity_m_s2 = spec.gravity_m_s2;
   out.rod.tip_mass_kg = spec.tip_mass_kg;
-  // Pieces from the shoulder: connector, segment 1, connector, segment 2, connector, segment 3.
+  // Pieces from the shoulder: connector, segment 1, connector, segment 2, connector, segment 3;
+  // a job per cell of every segment.
+  struct Job {
+    int segment, ring;
+    std::size_t piece;
+  };
+  std::vector<Job> jobs;
+  std::array<TcaSceneSpec, 3> scenes;
   for (const RodPiece& piece : spl_rod_pieces(spec.design, spec.connector_material)) {
     SpatialCellPiece p;
     if (piece.kind == RodPiece::Kind::connector) {
@@ -78,36 +87,45 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels) {
       continue;
     }
     const int n = static_cast<int>(out.rod.pieces.size()) / 2;
-    const TcaSceneSpec scene = spl_segment_cell_scene(spec, n, cell_levels);
-    const double peak = *std::max_element(scene.chamber_pressure_kPa.begin(), scene.chamber_pressure_kPa.end());
-    p.length_mm = scene.design.actuator.length_mm;
-    p.cap_mm = scene.design.actuator.end_cap_thickness_mm;
-    out.rings[n] = cell_rod_rings(scene.design.actuator.ring_count);
+    scenes[n] = spl_segment_cell_scene(spec, n, cell_levels);
+    p.length_mm = scenes[n].design.actuator.length_mm;
+    p.cap_mm = scenes[n].design.actuator.end_cap_thickness_mm;
+    out.rings[n] = cell_rod_rings(scenes[n].design.actuator.ring_count);
     if (out.rings[n].empty()) {
       out.failure = "segment " + std::to_string(n + 1) + " has no rings: the cell rod needs a ring pitch";
       return out;
     }
-    for (int ring : out.rings[n]) {
-      const TcaCellResult cell = run_tca_cell(scene, ring);
-      out.half_model[n] = cell.model.half;
-      out.seconds += cell.seconds;
-      out.largest_cell_dofs = std::max(out.largest_cell_dofs, cell.dofs);
-      ++out.cells;
-      out.outcomes.push_back(cell.path.outcome);
-      if (cell.path.outcome != PathOutcome::completed)
-        out.notes += " (segment " + std::to_string(n + 1) + ", ring " + std::to_string(ring) + ": " +
-                     cell.path.diagnosis + ")";
-      const double gj = cell_torsion_stiffness(scene, ring);
-      if (!(gj > 0)) {
-        out.failure = "segment " + std::to_string(n + 1) + ", ring " + std::to_string(ring) +
-                      ": the cell's tangent at rest is not positive definite (no torsional stiffness)";
-        return out;
-      }
-      p.cells.push_back(spatial_table(cell, peak));
-      p.cells.back().torsion_compliance_per_Nmm2 = 1 / gj;
-    }
+    for (int ring : out.rings[n]) jobs.push_back({n, ring, out.rod.pieces.size()});
     out.rod.pieces.push_back(p);
   }
+  // The cells, and each one's torsion at rest, side by side (parallel_tasks).
+  std::vector<TcaCellResult> cells(jobs.size());
+  std::vector<double> torsion(jobs.size());
+  parallel_tasks(static_cast<int>(jobs.size()), [&](int i) {
+    cells[i] = run_tca_cell(scenes[jobs[i].segment], jobs[i].ring);
+    torsion[i] = cell_torsion_stiffness(scenes[jobs[i].segment], jobs[i].ring);
+  });
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    const TcaCellResult& cell = cells[i];
+    const int n = jobs[i].segment, ring = jobs[i].ring;
+    const auto& p = scenes[n].chamber_pressure_kPa;
+    out.half_model[n] = cell.model.half;
+    out.largest_cell_dofs = std::max(out.largest_cell_dofs, cell.dofs);
+    ++out.cells;
+    out.outcomes.push_back(cell.path.outcome);
+    if (cell.path.outcome != PathOutcome::completed)
+      out.notes += " (segment " + std::to_string(n + 1) + ", ring " + std::to_string(ring) + ": " +
+                   cell.path.diagnosis + ")";
+    if (!(torsion[i] > 0)) {
+      out.failure = "segment " + std::to_string(n + 1) + ", ring " + std::to_string(ring) +
+                    ": the cell's tangent at rest is not positive definite (no torsional stiffness)";
+      return out;
+    }
+    auto& tables = out.rod.pieces[jobs[i].piece].cells;
+    tables.push_back(spatial_table(cell, *std::max_element(p.begin(), p.end())));
+    tables.back().torsion_compliance_per_Nmm2 = 1 / torsion[i];
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
 

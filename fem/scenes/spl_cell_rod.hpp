@@ -28,7 +28,7 @@ struct SplCells {
   std::array<std::vector<int>, 3> rings;       // the cells of each segment
   std::array<bool, 3> half_model{};            // per segment's cells
   int cells = 0, largest_cell_dofs = 0;
-  double seconds = 0;
+  double seconds = 0;                          // wall time of all the cells (run side by side)
   std::vector<PathOutcome> outcomes;           // per cell, in order
   std::string notes;                           // the cells that stopped short, and why
   std::string failure;                         // why there are no cells (a segment without rings)
