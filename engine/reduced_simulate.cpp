@@ -71,6 +71,7 @@ int simulate_cell_rod_tca(const fem::SceneConfig& config) {
   for (int ring : r.rings) std::cout << " " << ring;
   std::cout << " (" << r.cell_dofs << " dofs each, " << std::setprecision(3) << r.cell_seconds << " s), the rod "
             << r.rod_seconds << " s\n";
+  if (r.spatial) std::cout << "(the loads leave one plane: the spatial cell rod, with the cells' torsion)\n";
   std::ofstream csv = open_output_file(dir, "curve.csv");
   csv << "pressure_kPa,bending_angle_deg,tip_along_bend_mm,tip_z_mm\n";
   std::cout << std::setw(14) << "pressure_kPa" << std::setw(14) << "bending_deg" << std::setw(18) << "tip_along_bend_mm"
@@ -94,7 +95,8 @@ int simulate_cell_rod_tca(const fem::SceneConfig& config) {
   write_json_file(dir, "summary.json",
                   {{"scene", "tca"}, {"model", model_json(config)}, {"curve", curve},
                    {"target_pressure_kPa", r.target_pressure_kPa ? nlohmann::json(*r.target_pressure_kPa) : nlohmann::json()},
-                   {"cell_rings", r.rings}, {"cell_dofs", r.cell_dofs}, {"outcome", r.converged ? "completed" : "stopped"},
+                   {"cell_rings", r.rings}, {"cell_dofs", r.cell_dofs}, {"rod", r.spatial ? "spatial" : "planar"},
+                   {"outcome", r.converged ? "completed" : "stopped"},
                    {"diagnosis", r.diagnosis}, {"cell_seconds", r.cell_seconds}, {"rod_seconds", r.rod_seconds}});
   std::cout << "written: " << dir << "/curve.csv, " << dir << "/summary.json\n";
   return r.converged ? 0 : 1;

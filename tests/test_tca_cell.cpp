@@ -123,3 +123,40 @@ TEST_CASE("A cell's torsional stiffness: under the polar moment of a silicone ce
   CHECK(silicone_rings > 0.5 * mu * 2 * I);
   CHECK(abs_rings > 1.1 * silicone_rings);  // the rings hold the tube walls against shear
 }
+
+TEST_CASE("Gravity across the bend takes the 3CA's cell rod through the spatial rod, consistently with the planar one",
+          "[cell]") {
+  TcaSceneSpec spec = thesis_cell_spec();
+  use_cell_rod_rung_mesh(spec);
+  spec.chamber_pressure_kPa = {0, 60, 60};  // bends towards +x
+  spec.output_pressures_kPa = {30, 60};
+  spec.gravity_m_s2 = Eigen::Vector3d(9.80665, 0, 0);  // along the bend: one plane
+  const CellRodTcaResult along = run_cell_rod_tca(spec);
+  spec.gravity_m_s2 = Eigen::Vector3d(0, 9.80665, 0);  // across it
+  const CellRodTcaResult across = run_cell_rod_tca(spec);
+  spec.gravity_m_s2.setZero();
+  const CellRodTcaResult weightless = run_cell_rod_tca(spec);
+  REQUIRE(along.converged);
+  REQUIRE(across.converged);
+  REQUIRE(weightless.converged);
+  CHECK_FALSE(along.spatial);
+  CHECK(across.spatial);
+  // At rest the cells are straight and bend alike about x and y: the weight sags the 3CA as far
+  // across the bend as along it (the spatial rod's tip leaves the bend plane by exactly that).
+  const double sag = along.curve.front().tip_along_bend_mm;
+  INFO("sag along the bend " << sag << " mm; across: tip along the bend " << across.curve.front().tip_along_bend_mm
+                             << " mm, tilt " << across.curve.front().bending_angle_deg << "°");
+  CHECK(sag > 0.5);
+  CHECK(std::abs(across.curve.front().tip_along_bend_mm) < 1e-9);
+  // (to 5·10⁻⁵: the spatial rod also stretches under the weight's tension, the planar one does not)
+  CHECK(std::abs(across.curve.front().bending_angle_deg) ==
+        Approx(std::abs(along.curve.front().bending_angle_deg)).epsilon(2e-4));
+  // At 60 kPa the weight across the bend leaves the bend itself nearly as without weight.
+  const CellRodState& a = across.curve.back();
+  const CellRodState& w = weightless.curve.back();
+  INFO("60 kPa: across " << a.bending_angle_deg << "°, tip along the bend " << a.tip_along_bend_mm << " mm; weightless "
+                         << w.bending_angle_deg << "°, " << w.tip_along_bend_mm << " mm");
+  CHECK(a.tip_along_bend_mm == Approx(w.tip_along_bend_mm).epsilon(0.02));
+  CHECK(a.bending_angle_deg > w.bending_angle_deg);  // the sideways sag adds to the tip's tilt
+  CHECK(a.bending_angle_deg < w.bending_angle_deg + std::abs(along.curve.front().bending_angle_deg));
+}

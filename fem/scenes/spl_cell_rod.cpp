@@ -35,30 +35,6 @@ TcaSceneSpec spl_segment_cell_scene(const SplSceneSpec& spec, int n, int cell_le
 
 namespace {
 
-/// A cell's output states as the spatial rod's table, along the load level (an unloaded cell's
-/// one state holds at every level).
-SpatialCellTable spatial_table(const TcaCellResult& cell, double peak_kPa) {
-  SpatialCellTable t;
-  t.z_mm = cell.ring_centre_z_mm;
-  t.mass_per_length_kg_per_mm = cell.mass_per_length_kg_per_mm;
-  for (const TcaCellState& s : cell.states)
-    if (s.is_output && s.bending_compliance_per_Nmm2 > 0) {
-      t.level.push_back(peak_kPa > 0 ? s.pressure_kPa / peak_kPa : 0.0);
-      t.stretch.push_back(s.stretch);
-      t.curvature_per_mm.push_back(s.curvature_vector_per_mm);
-      t.bending_compliance_per_Nmm2.push_back(s.bending_compliance_matrix_per_Nmm2);
-      t.axial_compliance_per_N.push_back(s.axial_compliance_per_N);
-    }
-  if (peak_kPa <= 0 && t.level.size() == 1) {
-    t.level.push_back(1.0);
-    t.stretch.push_back(t.stretch.front());
-    t.curvature_per_mm.push_back(t.curvature_per_mm.front());
-    t.bending_compliance_per_Nmm2.push_back(t.bending_compliance_per_Nmm2.front());
-    t.axial_compliance_per_N.push_back(t.axial_compliance_per_N.front());
-  }
-  return t;
-}
-
 FacePose pose_at(const SpatialCellRodState& s, int node) {
   const double c = std::clamp(s.frame[node].col(2).z(), -1.0, 1.0);
   return {s.position[node], s.frame[node], std::acos(c) * kDeg};
@@ -122,7 +98,7 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels) {
       return out;
     }
     auto& tables = out.rod.pieces[jobs[i].piece].cells;
-    tables.push_back(spatial_table(cell, *std::max_element(p.begin(), p.end())));
+    tables.push_back(spatial_cell_table(cell, *std::max_element(p.begin(), p.end())));
     tables.back().torsion_compliance_per_Nmm2 = 1 / torsion[i];
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -1,5 +1,6 @@
 #include "fem/scenes/tca_cell.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -257,6 +258,28 @@ CellTable cell_table(const TcaCellResult& cell) {
   return t;
 }
 
+SpatialCellTable spatial_cell_table(const TcaCellResult& cell, double peak_kPa) {
+  SpatialCellTable t;
+  t.z_mm = cell.ring_centre_z_mm;
+  t.mass_per_length_kg_per_mm = cell.mass_per_length_kg_per_mm;
+  for (const TcaCellState& s : cell.states)
+    if (s.is_output && s.bending_compliance_per_Nmm2 > 0) {
+      t.level.push_back(peak_kPa > 0 ? s.pressure_kPa / peak_kPa : 0.0);
+      t.stretch.push_back(s.stretch);
+      t.curvature_per_mm.push_back(s.curvature_vector_per_mm);
+      t.bending_compliance_per_Nmm2.push_back(s.bending_compliance_matrix_per_Nmm2);
+      t.axial_compliance_per_N.push_back(s.axial_compliance_per_N);
+    }
+  if (peak_kPa <= 0 && t.level.size() == 1) {
+    t.level.push_back(1.0);
+    t.stretch.push_back(t.stretch.front());
+    t.curvature_per_mm.push_back(t.curvature_per_mm.front());
+    t.bending_compliance_per_Nmm2.push_back(t.bending_compliance_per_Nmm2.front());
+    t.axial_compliance_per_N.push_back(t.axial_compliance_per_N.front());
+  }
+  return t;
+}
+
 CellRodSpec tca_cell_rod(const TcaSceneSpec& spec, const std::vector<TcaCellResult>& cells) {
   CellRodSpec rod;
   rod.length_mm = spec.design.actuator.length_mm;
@@ -288,6 +311,34 @@ std::vector<int> cell_rod_rings(int ring_count) {
   return rings;
 }
 
+namespace {
+constexpr double kDeg = 57.295779513082320876;
+
+/// The 3CA's cell rod through the spatial rod (spatial_cell_rod.hpp): its only piece the 3CA, its
+/// clamp at the top, every load in any direction; the bending angle is the tip axis' tilt from rest,
+/// negative where the tip leans away from the pressures' bend direction (the sag under gravity).
+CellRodState solve_spatial_tca(const SpatialCellRodSpec& rod, const Eigen::Vector3d& bend, double peak_kPa,
+                               double pressure_kPa, SpatialCellRodState& last) {
+  CellRodState out;
+  out.pressure_kPa = pressure_kPa;
+  const SpatialCellRodState s =
+      solve_spatial_cell_rod(rod, peak_kPa > 0 ? pressure_kPa / peak_kPa : 0.0, last.ok ? &last : nullptr);
+  out.iterations = s.iterations;
+  if (!s.ok) {
+    out.diagnosis = s.diagnosis;
+    return out;
+  }
+  last = s;
+  const Eigen::Vector3d tangent = -s.frame.back().col(2), tip = s.position.back();  // down the 3CA at rest
+  out.bending_angle_deg = std::acos(std::clamp(-tangent.z(), -1.0, 1.0)) * kDeg;
+  if (tangent.dot(bend) < 0) out.bending_angle_deg = -out.bending_angle_deg;
+  out.tip_along_bend_mm = tip.dot(bend);
+  out.tip_z_mm = tip.z();
+  out.ok = true;
+  return out;
+}
+}  // namespace
+
 CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
   CellRodTcaResult out;
   const int n = spec.design.actuator.ring_count;
@@ -296,31 +347,52 @@ CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
     out.diagnosis = "the cell rod needs rings: a 3CA without them has no ring pitch (and barely bends)";
     return out;
   }
-  // The rod is planar: gravity must lie in the plane of the axis and the bend direction
-  // (checked before the cells are run).
+  // In one plane (the pressures and gravity share a mirror plane through the axis: a half model
+  // would do) the planar rod, on which the ladder's error was measured; else the spatial rod, whose
+  // cells also give their torsion.
+  TcaSceneSpec mirror = spec;
+  mirror.allow_symmetry = true;
+  out.spatial = !choose_tca_model(mirror).half;
   Eigen::Vector3d bend = tca_bend_direction(spec.chamber_pressure_kPa);
   if (bend.norm() > 0) bend.normalize();
-  const Eigen::Vector3d off_plane =
-      spec.gravity_m_s2 - spec.gravity_m_s2.z() * Eigen::Vector3d::UnitZ() - spec.gravity_m_s2.dot(bend) * bend;
-  if (off_plane.norm() > 1e-9 * (1 + spec.gravity_m_s2.norm())) {
-    out.diagnosis = "the cell rod is planar and gravity leaves the plane of the axis and the bend; use the 3D model";
-    return out;
-  }
   out.rings = cell_rod_rings(n);
   std::vector<TcaCellResult> cells;
+  std::vector<double> torsion(out.rings.size(), 0.0);
   // The cells side by side, one thread each (parallel_tasks).
   const auto t_cells = std::chrono::steady_clock::now();
   cells.resize(out.rings.size());
-  parallel_tasks(static_cast<int>(out.rings.size()), [&](int i) { cells[i] = run_tca_cell(spec, out.rings[i]); });
+  parallel_tasks(static_cast<int>(out.rings.size()), [&](int i) {
+    cells[i] = run_tca_cell(spec, out.rings[i]);
+    if (out.spatial) torsion[i] = cell_torsion_stiffness(spec, out.rings[i]);
+  });
   out.cell_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_cells).count();
   out.cell_dofs = cells.back().dofs;
   const CellRodSpec rod = tca_cell_rod(spec, cells);
+  const double peak = *std::max_element(spec.chamber_pressure_kPa.begin(), spec.chamber_pressure_kPa.end());
+  SpatialCellRodSpec spatial;
+  if (out.spatial) {
+    SpatialCellPiece piece;
+    piece.length_mm = rod.length_mm;
+    piece.cap_mm = rod.cap_mm;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      if (!(torsion[i] > 0)) {
+        out.diagnosis = "the cell about ring " + std::to_string(out.rings[i]) +
+                        " has no torsional stiffness (its tangent at rest is not positive definite)";
+        return out;
+      }
+      piece.cells.push_back(spatial_cell_table(cells[i], peak));
+      piece.cells.back().torsion_compliance_per_Nmm2 = 1 / torsion[i];
+    }
+    spatial.pieces = {piece};
+    spatial.gravity_m_s2 = spec.gravity_m_s2;
+  }
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<double> pressures = {0.0};
   pressures.insert(pressures.end(), spec.output_pressures_kPa.begin(), spec.output_pressures_kPa.end());
   std::vector<TcaState> states;
+  SpatialCellRodState last;
   for (double p : pressures) {
-    const CellRodState s = solve_cell_rod(rod, p);
+    const CellRodState s = out.spatial ? solve_spatial_tca(spatial, bend, peak, p, last) : solve_cell_rod(rod, p);
     if (!s.ok) {
       out.diagnosis = s.diagnosis;
       for (const auto& c : cells)

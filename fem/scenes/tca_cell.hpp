@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "fem/reduced/cell_rod.hpp"
+#include "fem/reduced/spatial_cell_rod.hpp"
 #include "fem/scenes/tca_scene.hpp"
 
 namespace softarm::fem {
@@ -80,6 +81,11 @@ double cell_torsion_stiffness(const TcaSceneSpec& spec, int ring);
 /// positive definite tangent, in order.
 CellTable cell_table(const TcaCellResult& cell);
 
+/// A cell's output states as the spatial cell rod's table (spatial_cell_rod.hpp), along the load
+/// level p/peak_kPa (an unloaded cell's one state holds at every level); its torsion is left to the
+/// caller (cell_torsion_stiffness).
+SpatialCellTable spatial_cell_table(const TcaCellResult& cell, double peak_kPa);
+
 /// The cell rod of spec's 3CA from its cells (cell_rod.hpp): length, caps, and the spec's
 /// gravity resolved along the pressures' bend direction and the axis (user frame).
 CellRodSpec tca_cell_rod(const TcaSceneSpec& spec, const std::vector<TcaCellResult>& cells);
@@ -93,9 +99,13 @@ void use_cell_rod_rung_mesh(TcaSceneSpec& spec);
 std::vector<int> cell_rod_rings(int ring_count);
 
 /// The 3CA scene on the cell rod: cells about the first, middle and last rings (fewer when
-/// the design has fewer), the rod evaluated at rest and at every output pressure.
+/// the design has fewer), the rod evaluated at rest and at every output pressure. Loads in one
+/// plane (a mirror plane through the axis) take the planar rod (cell_rod.hpp), any others the
+/// spatial one (spatial_cell_rod.hpp) with the cells' torsion; the bending angle is then the tip
+/// axis' tilt from rest, signed by the pressures' bend direction.
 struct CellRodTcaResult {
   std::vector<int> rings;
+  bool spatial = false;                        // the loads leave one plane: the spatial cell rod
   std::vector<CellRodState> curve;             // rest, then the outputs the rod reached
   std::optional<double> target_pressure_kPa;   // where the bending reaches spec.target_bending_deg
   bool converged = false;                      // every output reached
