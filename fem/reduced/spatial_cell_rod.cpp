@@ -5,16 +5,12 @@
 #include <cmath>
 
 #include "fem/reduced/cell_interpolation.hpp"
+#include "fem/reduced/rotation_vector.hpp"
 
 namespace softarm::fem {
 namespace {
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
-
-Mat3 rotation(const Vec3& v) {  // exp([v]×), Rodrigues
-  const double angle = v.norm();
-  return angle < 1e-300 ? Mat3::Identity() : Eigen::AngleAxisd(angle, v / angle).toRotationMatrix();
-}
 
 /// One interval's section at the load level: free response and compliances.
 struct IntervalSection {
@@ -124,8 +120,8 @@ SpatialCellRodState solve_spatial_cell_rod(const SpatialCellRodSpec& spec, doubl
       k.head<2>() += s.bending * local.head<2>();
       k.z() += s.torsion * local.z();
       const double stretch = s.free_stretch + s.axial * tension[i];
-      const Mat3 half = R[i] * rotation(-0.5 * s.length * k);
-      R[i + 1] = R[i] * rotation(-s.length * k);
+      const Mat3 half = R[i] * rotation_exp(-0.5 * s.length * k);
+      R[i + 1] = R[i] * rotation_exp(-s.length * k);
       r[i + 1] = r[i] - s.length * stretch * half.col(2);
     }
     // The weights' moments and tension at each interval's midpoint (masses lumped there).

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "fem/reduced/rod_continuation.hpp"
+#include "fem/reduced/rotation_vector.hpp"
 #include "fem/reduced/rod_section.hpp"
 
 namespace softarm::fem {
@@ -14,13 +15,6 @@ namespace {
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 constexpr double kDeg = 57.295779513082320876;
-
-// exp([v]×): the rotation by |v| about v (Rodrigues).
-Mat3 rotation(const Vec3& v) {
-  const double angle = v.norm();
-  if (angle < 1e-300) return Mat3::Identity();
-  return Eigen::AngleAxisd(angle, v / angle).toRotationMatrix();
-}
 }  // namespace
 
 Mat3 hanging_rod_frame() {
@@ -105,7 +99,7 @@ Vec3 SpatialRod::shoot(const Vec3& m0, const SpatialRodLoad& load, SpatialRodSta
     double stretch = warm ? start_stretch[j + 1] : st.stretch[j];
     Vec3 curvature = warm ? start_curvature[j + 1] : st.curvature[j];
     for (int it = 0; it < 30; ++it) {
-      const Mat3 r = st.frame[j] * rotation(0.5 * ds * (st.curvature[j] + curvature));
+      const Mat3 r = st.frame[j] * rotation_exp(0.5 * ds * (st.curvature[j] + curvature));
       const Vec3 dr = 0.5 * ds * (st.stretch[j] * st.frame[j].col(2) + stretch * r.col(2));
       const Vec3 m = st.moment[j] - dr.cross(weight_beyond[j + 1]) - (0.5 * dr).cross(w);
       const double old_stretch = stretch;
@@ -120,7 +114,7 @@ Vec3 SpatialRod::shoot(const Vec3& m0, const SpatialRodLoad& load, SpatialRodSta
     // The frame, position and moment stored above belong to the last curvature but one: redo them once converged.
     st.stretch[j + 1] = stretch;
     st.curvature[j + 1] = curvature;
-    st.frame[j + 1] = st.frame[j] * rotation(0.5 * ds * (st.curvature[j] + curvature));
+    st.frame[j + 1] = st.frame[j] * rotation_exp(0.5 * ds * (st.curvature[j] + curvature));
     const Vec3 dr = 0.5 * ds * (st.stretch[j] * st.frame[j].col(2) + stretch * st.frame[j + 1].col(2));
     st.position[j + 1] = st.position[j] + dr;
     st.moment[j + 1] = st.moment[j] - dr.cross(weight_beyond[j + 1]) - (0.5 * dr).cross(w);

@@ -12,6 +12,11 @@ namespace softarm::fem {
 namespace {
 constexpr double kDeg = 57.295779513082320876;
 
+/// A node's pose from rest: position, rotation, and the tilt of its axis (z at rest).
+FacePose pose_at(const SpatialCellRodState& s, int node) {
+  const double c = std::clamp(s.frame[node].col(2).z(), -1.0, 1.0);
+  return {s.position[node], s.frame[node], std::acos(c) * kDeg};
+}
 }  // namespace
 
 TcaSceneSpec spl_segment_cell_scene(const SplSceneSpec& spec, int n, int cell_levels) {
@@ -32,14 +37,6 @@ TcaSceneSpec spl_segment_cell_scene(const SplSceneSpec& spec, int n, int cell_le
   use_cell_rod_rung_mesh(s);
   return s;
 }
-
-namespace {
-
-FacePose pose_at(const SpatialCellRodState& s, int node) {
-  const double c = std::clamp(s.frame[node].col(2).z(), -1.0, 1.0);
-  return {s.position[node], s.frame[node], std::acos(c) * kDeg};
-}
-}  // namespace
 
 SplCells spl_cells(const SplSceneSpec& spec, int cell_levels) {
   const auto t0 = std::chrono::steady_clock::now();
