@@ -1,8 +1,10 @@
 #include "fem/reduced/spatial_cell_rod.hpp"
 
+#include <Eigen/Dense>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "fem/reduced/cell_interpolation.hpp"
 #include "fem/reduced/rotation_vector.hpp"
@@ -107,9 +109,22 @@ SpatialCellRodState solve_spatial_cell_rod(const SpatialCellRodSpec& spec, doubl
   if (start && static_cast<int>(start->moment_Nmm.size()) == n) moment = start->moment_Nmm;
   std::vector<Vec3> r(n + 1);
   std::vector<Mat3> R(n + 1);
-  double relaxation = 1, last_change = 1e300;
+  // The iterate: every interval's moment and tension, which the shape they produce maps to new
+  // ones. The map is a contraction only while the weight bends the rod little; Anderson mixing of
+  // the last few iterates (Walker & Ni 2011) settles it where plain iteration oscillates or
+  // creeps (a horizontal arm, a heavy tip mass). A residual that blows up restarts the history.
+  constexpr int kMemory = 6;
+  const auto pack = [&](const std::vector<Vec3>& m, const std::vector<double>& t) {
+    Eigen::VectorXd v(4 * n);
+    for (int i = 0; i < n; ++i) v.segment<3>(3 * i) = m[i], v[3 * n + i] = t[i];
+    return v;
+  };
+  Eigen::VectorXd x = pack(moment, tension), x_previous, f_previous;
+  std::vector<Eigen::VectorXd> dx, df;
+  double best = std::numeric_limits<double>::infinity();
   Vec3 last_tip = Vec3::Constant(1e300);
   for (int it = 1; it <= 400; ++it) {
+    for (int i = 0; i < n; ++i) moment[i] = x.segment<3>(3 * i), tension[i] = x[3 * n + i];
     // The shape under the current moments, from the clamp down.
     r[0] = Vec3(0, 0, spatial_cell_rod_length_mm(spec));
     R[0] = Mat3::Identity();
@@ -125,26 +140,39 @@ SpatialCellRodState solve_spatial_cell_rod(const SpatialCellRodSpec& spec, doubl
       r[i + 1] = r[i] - s.length * stretch * half.col(2);
     }
     // The weights' moments and tension at each interval's midpoint (masses lumped there).
+    std::vector<double> next_tension(n);
     Vec3 force = spec.tip_mass_kg * g, about_origin = r[n].cross(force);
     for (int i = n - 1; i >= 0; --i) {
       const Vec3 at = 0.5 * (r[i] + r[i + 1]);
       next[i] = at.cross(force) - about_origin;  // −Σ (r_j − at) × f_j over the weights below
-      tension[i] = -force.dot(R[i].col(2));
+      next_tension[i] = -force.dot(R[i].col(2));
       const Vec3 f = sec[i].mass * g;
       about_origin += at.cross(f);
       force += f;
     }
-    const double change = (r[n] - last_tip).norm();
     out.iterations = it;
-    if (change < 1e-9) {
+    if ((r[n] - last_tip).norm() < 1e-9) {
       out.ok = true;
       break;
     }
-    // An iteration that grows the change oscillates: relax harder.
-    if (it > 2 && change > last_change) relaxation = std::max(0.05, 0.5 * relaxation);
-    last_change = change;
     last_tip = r[n];
-    for (int i = 0; i < n; ++i) moment[i] += relaxation * (next[i] - moment[i]);
+    const Eigen::VectorXd f = pack(next, next_tension) - x;
+    if (!f.allFinite()) break;
+    if (x_previous.size() > 0) {
+      dx.push_back(x - x_previous), df.push_back(f - f_previous);
+      if (static_cast<int>(dx.size()) > kMemory) dx.erase(dx.begin()), df.erase(df.begin());
+    }
+    if (f.norm() > 1e3 * best) dx.clear(), df.clear();
+    best = std::min(best, f.norm());
+    x_previous = x, f_previous = f;
+    Eigen::VectorXd step = f;
+    if (!df.empty()) {
+      Eigen::MatrixXd F(4 * n, df.size()), X(4 * n, dx.size());
+      for (std::size_t k = 0; k < df.size(); ++k) F.col(k) = df[k], X.col(k) = dx[k];
+      const Eigen::VectorXd gamma = F.colPivHouseholderQr().solve(f);
+      if (gamma.allFinite()) step = f - (X + F) * gamma;
+    }
+    x += step;
   }
   if (!out.ok) {
     out.diagnosis = "the shape under its weight did not settle in 400 iterations (the weight's moment may exceed what "
