@@ -80,6 +80,49 @@ TEST_CASE("A tip load bends the spatial cell rod as the linear cantilever, towar
   }
 }
 
+TEST_CASE("A large tip load bends the spatial cell rod into Euler's elastica", "[cell][rod]") {
+  // A hanging rod, clamped at the top, a weight P across it at the tip, P L²/EI = 3: the tip moves
+  // across by 0.6 L. The elastica: θ(s) from the rest axis, EI θ'' = −P cos θ, θ(0) = 0,
+  // θ'(L) = 0, solved here by shooting on θ'(0) with RK4 (10⁴ steps).
+  const double L = 100, c = 1e-5, P = 30;  // 1/EI in 1/(N·mm²); N
+  const double a = P * c;                  // P/EI, 1/mm²
+  struct Tip {
+    double slope_end, x, z;
+  };
+  const auto shoot = [&](double k0) {
+    const int steps = 10000;
+    const double h = L / steps;
+    Eigen::Vector4d y(0, k0, 0, 0);  // θ, θ', x, z
+    const auto f = [&](const Eigen::Vector4d& v) {
+      return Eigen::Vector4d(v[1], -a * std::cos(v[0]), std::sin(v[0]), -std::cos(v[0]));
+    };
+    for (int i = 0; i < steps; ++i) {
+      const Eigen::Vector4d k1 = f(y), k2 = f(y + 0.5 * h * k1), k3 = f(y + 0.5 * h * k2), k4 = f(y + h * k3);
+      y += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    }
+    return Tip{y[1], y[2], y[3]};
+  };
+  double lo = 0, hi = a * L;  // θ'(0) = M(0)/EI lies between 0 and the straight rod's P L/EI
+  for (int i = 0; i < 100; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (shoot(mid).slope_end > 0 ? hi : lo) = mid;
+  }
+  const Tip elastica = shoot(0.5 * (lo + hi));
+  SpatialCellRodSpec spec;
+  spec.pieces = {segment(L, {linear_cell(10, {0, 0}, 0, c, 0), linear_cell(90, {0, 0}, 0, c, 0)})};
+  spec.gravity_m_s2 = Eigen::Vector3d(10, 0, 0);
+  spec.tip_mass_kg = P / 10;
+  spec.interval_mm = 0.25;
+  const SpatialCellRodState s = solve_spatial_cell_rod(spec, 0.0);
+  INFO("elastica tip (" << elastica.x << ", " << elastica.z << ") mm; rod (" << s.position.back().x() << ", "
+                        << s.position.back().z() - L << ") mm after " << s.iterations << " iterations");
+  REQUIRE(s.ok);
+  CHECK(elastica.x > 0.5 * L);  // a large deflection indeed
+  CHECK(s.position.back().x() == Approx(elastica.x).epsilon(1e-4));
+  CHECK(s.position.back().z() - L == Approx(elastica.z).epsilon(1e-4));
+  CHECK(std::abs(s.position.back().y()) < 1e-9);
+}
+
 TEST_CASE("In one plane the spatial cell rod poses a 3CA as the planar cell rod does", "[cell][rod]") {
   // Cells with curvature and stretch varying along the height, heavy, with caps, under gravity
   // against the bend and down the axis: the planar rod's bend is the spatial +x.
