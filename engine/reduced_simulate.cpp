@@ -116,7 +116,7 @@ int simulate_cell_rod_spl(const fem::SceneConfig& config) {
   }
   std::cout << std::setprecision(3) << c.cells << " cells (up to " << c.largest_cell_dofs << " dofs) in " << c.seconds
             << " s, the rod " << r.rod_seconds << " s\n";
-  SplCurveWriter writer(dir, std::cout);
+  SplCurveWriter writer(dir, std::cout, "fixed_point");
   for (const auto& s : r.curve) writer.add(s);
   std::cout << "\noutcome: " << (r.converged ? "completed" : "stopped — " + r.diagnosis) << "\n";
   print_joint_table(r.joints, std::cout);

@@ -43,10 +43,10 @@ void print_joint_table(const std::vector<fem::SplJoint>& joints, std::ostream& o
         << j.pose.position_mm.z() << std::setw(11) << j.pose.tilt_deg << "\n";
 }
 
-SplCurveWriter::SplCurveWriter(const std::string& directory, std::ostream& out)
+SplCurveWriter::SplCurveWriter(const std::string& directory, std::ostream& out, const std::string& iterations)
     : csv_(open_output_file(directory, "curve.csv")), out_(out) {
-  csv_ << "load_fraction,tip_x_mm,tip_y_mm,tip_z_mm,tip_tilt_deg,newton_iterations\n";
-  out_ << "  load_fraction   tip_x_mm   tip_y_mm   tip_z_mm  tip_tilt_deg  newton\n";
+  csv_ << "load_fraction,tip_x_mm,tip_y_mm,tip_z_mm,tip_tilt_deg," << iterations << "_iterations\n";
+  out_ << "  load_fraction   tip_x_mm   tip_y_mm   tip_z_mm  tip_tilt_deg  " << iterations << "\n";
 }
 
 void SplCurveWriter::add(const fem::SplState& s) {

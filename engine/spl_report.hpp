@@ -12,7 +12,9 @@ namespace softarm::engine {
 
 class SplCurveWriter {
  public:
-  SplCurveWriter(const std::string& directory, std::ostream& out);
+  /// `iterations`: what the last column counts ("newton" for the FEM and the spatial rod's shooting,
+  /// "fixed_point" for the cell rod's shape–moment iterations).
+  SplCurveWriter(const std::string& directory, std::ostream& out, const std::string& iterations = "newton");
   void add(const fem::SplState& state);
 
  private:

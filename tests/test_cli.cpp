@@ -120,6 +120,30 @@ TEST_CASE("softarm rejects bad 3CA and SPL input with the field named", "[cli]")
                      "load.chamber_pressures_kPa");
 }
 
+TEST_CASE("simulate on the SPL config's own model: the cell rod, its cells and joints, no NaN", "[cli][cell]") {
+  // The thesis pose config asks for 5 %: the cell rod. A light load (chamber 9 at 30 kPa) keeps the
+  // cells short; the upper segments' cells are unloaded (their rest state).
+  std::ifstream in(std::string(SOFTARM_SOURCE_DIR) + "/configs/spl_thesis_pose.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string config = text.str();
+  const std::string pressures = "[0, 345, 345, 0, 86, 345, 0, 0, 59]";
+  REQUIRE(config.find(pressures) != std::string::npos);
+  config.replace(config.find(pressures), pressures.size(), "[0, 0, 0, 0, 0, 0, 0, 0, 30]");
+  const auto file = write_config("spl_cell.json", config);
+  const auto r = run_softarm("simulate " + file + " -o /tmp/softarm_cli_test/spl_cell");
+  INFO(r.output);
+  CHECK(r.exit_code == 0);
+  CHECK(r.output.find("cell rod: 3 ring-pitch cells per segment") != std::string::npos);
+  CHECK(r.output.find("segment 3: rings 1 15 30, half model") != std::string::npos);
+  CHECK(r.output.find("fixed_point") != std::string::npos);
+  CHECK(r.output.find("segment 3 bottom (tip)") != std::string::npos);
+  CHECK(r.output.find("outcome: completed") != std::string::npos);
+  CHECK(r.output.find("nan") == std::string::npos);
+  std::ifstream summary("/tmp/softarm_cli_test/spl_cell/summary.json");
+  CHECK(summary.good());
+}
+
 TEST_CASE("simulate --fidelity fast poses the thesis SPL by the spatial rod", "[cli]") {
   const std::string config = std::string(SOFTARM_SOURCE_DIR) + "/configs/spl_thesis_pose.json";
   const auto r = run_softarm("simulate " + config + " --fidelity fast -o /tmp/softarm_cli_test/spl_rod");

@@ -23,6 +23,23 @@ struct IntervalSection {
   double length = 0, mass = 0;
 };
 
+/// A piece's intervals: their count and length (at most the spec's interval).
+int interval_count(const SpatialCellRodSpec& spec, const SpatialCellPiece& piece) {
+  return std::max(1, static_cast<int>(std::ceil(piece.length_mm / spec.interval_mm - 1e-9)));
+}
+
+/// The mass of each interval of a piece (kg): a connector's spread evenly, a segment's from its
+/// cells' mass per length (Lagrange in height), whatever their tables reached.
+std::vector<double> interval_masses(const SpatialCellRodSpec& spec, const SpatialCellPiece& piece) {
+  const int n = interval_count(spec, piece);
+  const double dz = piece.length_mm / n;
+  if (piece.cells.empty()) return std::vector<double>(n, piece.mass_kg / n);
+  std::vector<double> z, mass, out;
+  for (const SpatialCellTable& c : piece.cells) z.push_back(c.z_mm), mass.push_back(c.mass_per_length_kg_per_mm);
+  for (int i = 0; i < n; ++i) out.push_back(lagrange(z, mass, piece.length_mm - (i + 0.5) * dz) * dz);
+  return out;
+}
+
 /// The pieces' intervals at level t; an empty string when every cell's table covers t.
 std::string sections_at(const SpatialCellRodSpec& spec, double t, std::vector<IntervalSection>& out,
                         std::vector<int>& first_interval) {
@@ -30,13 +47,14 @@ std::string sections_at(const SpatialCellRodSpec& spec, double t, std::vector<In
   first_interval.clear();
   for (const SpatialCellPiece& piece : spec.pieces) {
     first_interval.push_back(static_cast<int>(out.size()));
-    const int n = std::max(1, static_cast<int>(std::ceil(piece.length_mm / spec.interval_mm - 1e-9)));
+    const int n = interval_count(spec, piece);
     const double dz = piece.length_mm / n;
+    const std::vector<double> masses = interval_masses(spec, piece);
     if (piece.cells.empty()) {
-      for (int i = 0; i < n; ++i) out.push_back({Vec3::Zero(), 1, Eigen::Matrix2d::Zero(), 0, 0, dz, piece.mass_kg / n});
+      for (int i = 0; i < n; ++i) out.push_back({Vec3::Zero(), 1, Eigen::Matrix2d::Zero(), 0, 0, dz, masses[i]});
       continue;
     }
-    std::vector<double> z, stretch, axial, mass, torsion;
+    std::vector<double> z, stretch, axial, torsion;
     std::vector<Eigen::Vector2d> curvature;
     std::vector<Eigen::Matrix2d> bending;
     for (const SpatialCellTable& c : piece.cells) {
@@ -48,8 +66,7 @@ std::string sections_at(const SpatialCellRodSpec& spec, double t, std::vector<In
         return "the cell at z = " + std::to_string(c.z_mm) + " mm reached " +
                std::to_string(c.level.empty() ? 0.0 : c.level.back()) + " of its pressures only";
       z.push_back(c.z_mm), stretch.push_back(*l), curvature.push_back(*k), bending.push_back(*b);
-      axial.push_back(*a), mass.push_back(c.mass_per_length_kg_per_mm);
-      torsion.push_back(c.torsion_compliance_per_Nmm2);
+      axial.push_back(*a), torsion.push_back(c.torsion_compliance_per_Nmm2);
     }
     // From the piece's top (its z = length) down.
     for (int i = 0; i < n; ++i) {
@@ -65,7 +82,7 @@ std::string sections_at(const SpatialCellRodSpec& spec, double t, std::vector<In
       s.axial = lagrange(z, axial, zi);
       s.torsion = lagrange(z, torsion, zi);
       s.length = dz;
-      s.mass = lagrange(z, mass, zi) * dz;
+      s.mass = masses[i];
       out.push_back(s);
     }
   }
@@ -80,11 +97,9 @@ double spatial_cell_rod_length_mm(const SpatialCellRodSpec& spec) {
 }
 
 double spatial_cell_rod_mass_kg(const SpatialCellRodSpec& spec) {
-  std::vector<IntervalSection> sections;
-  std::vector<int> first;
-  if (!sections_at(spec, 0.0, sections, first).empty()) return std::nan("");  // a table without its rest state
   double m = 0;
-  for (const auto& s : sections) m += s.mass;
+  for (const auto& piece : spec.pieces)
+    for (double interval : interval_masses(spec, piece)) m += interval;
   return m;
 }
 

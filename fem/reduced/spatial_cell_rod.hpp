@@ -25,8 +25,7 @@
 
 namespace softarm::fem {
 
-/// One cell's response along its segment's load ramp t ∈ [0, 1] (pressures t times their peaks),
-/// from its rest state (t = 0) on.
+/// One cell's response along its segment's load ramp t ∈ [0, 1] (pressures t times their peaks).
 struct SpatialCellTable {
   double z_mm = 0;  // the cell's ring centre in its segment (0: the segment's distal end)
   std::vector<double> level, stretch, axial_compliance_per_N;
