@@ -12,8 +12,9 @@
 // where M is the moment on the part below Z from the part above (M = −Σ (r_j − r) × f_j over
 // the weights f_j below) and N = −(Σ f_j)·R e3 its tension. The weights' moments follow the
 // shape, so shape and moments are iterated to a fixed point, with Anderson mixing of the last
-// iterates (a horizontal arm or a heavy tip mass makes the plain iteration oscillate or creep). Connectors are rigid and heavy; a segment's solid end caps neither stretch
-// nor bend on their own (κ₀ = 0, λ₀ = 1), and bend under moments with the cells' compliance.
+// iterates (a horizontal arm or a heavy tip mass makes the plain iteration oscillate or
+// creep). Connectors are rigid and heavy; a segment's solid end caps neither stretch nor bend
+// on their own (κ₀ = 0, λ₀ = 1), and bend under moments with the cells' compliance.
 //
 // Left out, by construction: the caps' and clamp's disturbance of the sections next to
 // them (the planar cell rod's +3 % at low pressure on the thesis 3CA), the taper within

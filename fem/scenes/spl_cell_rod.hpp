@@ -4,9 +4,10 @@
 // own three chamber pressures ramped from 0 to their peaks; the rod then poses the arm under
 // gravity in any direction and the tip mass, at rest and at every output level, in about a
 // millisecond per level. Each cell's torsional stiffness comes from the same cell with
-// periodic faces at rest (tca_cell.hpp, cell_torsion_stiffness). The cells take the mesh of the 3CA ladder's cell-rod rung (Hex20/P1
-// at 27 points, level 1 cross-section, level 4's layers), a half model where a segment's
-// pressures are mirror-symmetric (a lone chamber, two equal ones, none), else the full one.
+// periodic faces at rest (tca_cell.hpp, cell_torsion_stiffness). The cells take the mesh of
+// the 3CA ladder's cell-rod rung (Hex20/P1 at 27 points, level 1 cross-section, level 4's
+// layers), a half model where a segment's pressures are mirror-symmetric (a lone chamber,
+// two equal ones, none), else the full one; they run side by side, one thread each.
 #include <array>
 #include <string>
 #include <vector>
