@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "fem/core/parallel.hpp"
+#include "benchmarks/bench_scene.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
 #include "fem/scenes/tca_cell.hpp"
@@ -94,12 +95,9 @@ int main(int argc, char** argv) {
     else if (a == "--threads" && i + 1 < argc) fem::set_thread_count(std::atoi(argv[++i]));
     else config = a;
   }
-  auto scene = fem::load_scene_config(config);
-  if (scene.scene != "spl") {
-    std::fprintf(stderr, "bench_spl_cell_rod: %s is not an spl scene\n", config.c_str());
-    return 2;
-  }
-  fem::SplSceneSpec spec = scene.spl;
+  const auto scene = bench::scene_of_kind(config, "spl", "bench_spl_cell_rod");
+  if (!scene) return 2;
+  fem::SplSceneSpec spec = scene->spl;
   if (full) spec.allow_symmetry = false;
   fem::SplCells cells;
   if (load_cells.empty()) {

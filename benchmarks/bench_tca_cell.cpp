@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "fem/core/parallel.hpp"
+#include "benchmarks/bench_scene.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/tca_cell.hpp"
 
@@ -40,12 +41,9 @@ int main(int argc, char** argv) {
     else if (a == "--threads" && i + 1 < argc) fem::set_thread_count(std::atoi(argv[++i]));
     else config = a;
   }
-  auto scene = fem::load_scene_config(config);
-  if (scene.scene != "tca") {
-    std::fprintf(stderr, "bench_tca_cell: %s is not a tca scene\n", config.c_str());
-    return 2;
-  }
-  fem::TcaSceneSpec spec = scene.tca;
+  const auto scene = bench::scene_of_kind(config, "tca", "bench_tca_cell");
+  if (!scene) return 2;
+  fem::TcaSceneSpec spec = scene->tca;
   if (axial_level >= 0) spec.axial_level = axial_level;
   const int n = spec.design.actuator.ring_count;
   std::vector<int> rings;

@@ -19,6 +19,17 @@ namespace {
 // The plane's penalty per node: this many times the stiffest silicone's initial shear
 // modulus times 1 mm (plane_face_form.hpp).
 constexpr double kPlanePenaltyRatio = 1e4;
+
+/// The initial shear modulus of the cell's stiffest part but the rings (the penalties' scale).
+double stiffest_silicone_shear_modulus(const Mesh& mesh, const std::vector<Material>& materials) {
+  double mu = 0;
+  for (std::size_t p = 0; p < materials.size(); ++p)
+    if (mesh.part_names[p] != "rings") mu = std::max(mu, materials[p].law->initial_shear_modulus());
+  return mu;
+}
+
+/// The output states a rod's table takes: those with a positive definite tangent.
+bool is_table_row(const TcaCellState& s) { return s.is_output && s.bending_compliance_per_Nmm2 > 0; }
 }  // namespace
 
 TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad& end_load) {
@@ -78,9 +89,7 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
                                    hex20_integration(mesh, spec.integration));
   out.element_name = elastic->element_name();
   problem.add_form(elastic);
-  double mu = 0;
-  for (std::size_t p = 0; p < materials.size(); ++p)
-    if (mesh.part_names[p] != "rings") mu = std::max(mu, materials[p].law->initial_shear_modulus());
+  const double mu = stiffest_silicone_shear_modulus(mesh, materials);
   auto plane = std::make_shared<PlaneFaceForm>(mesh.node_sets.at("top"), pilot, out.pitch_mm, kPlanePenaltyRatio * mu);
   problem.add_form(plane);
   if (spec.newton.rotate_stiff_parts) problem.set_stiff_inclusions(stiff_parts(mesh, materials));
@@ -229,9 +238,7 @@ double cell_torsion_stiffness(const TcaSceneSpec& spec, int ring) {
   EnergyProblem problem(X, bc);
   problem.add_form(make_elastic_form(mesh, materials, VolumetricTreatment::projected_dilatation,
                                      hex20_integration(mesh, full.integration)));
-  double mu = 0;
-  for (std::size_t p = 0; p < materials.size(); ++p)
-    if (mesh.part_names[p] != "rings") mu = std::max(mu, materials[p].law->initial_shear_modulus());
+  const double mu = stiffest_silicone_shear_modulus(mesh, materials);
   problem.add_form(std::make_shared<PeriodicFaceForm>(facing_nodes(mesh.node_sets.at("top"), bottom, X, 1e-9), X,
                                                       twist_pilot, bend_pilot, kPlanePenaltyRatio * mu));
   problem.finalize();
@@ -249,7 +256,7 @@ CellTable cell_table(const TcaCellResult& cell) {
   t.z_mm = cell.ring_centre_z_mm;
   t.mass_per_length_kg_per_mm = cell.mass_per_length_kg_per_mm;
   for (const TcaCellState& s : cell.states)
-    if (s.is_output && s.bending_compliance_per_Nmm2 > 0) {
+    if (is_table_row(s)) {
       t.pressure_kPa.push_back(s.pressure_kPa);
       t.stretch.push_back(s.stretch);
       t.curvature_per_mm.push_back(s.curvature_per_mm);
@@ -263,7 +270,7 @@ SpatialCellTable spatial_cell_table(const TcaCellResult& cell, double peak_kPa) 
   t.z_mm = cell.ring_centre_z_mm;
   t.mass_per_length_kg_per_mm = cell.mass_per_length_kg_per_mm;
   for (const TcaCellState& s : cell.states)
-    if (s.is_output && s.bending_compliance_per_Nmm2 > 0) {
+    if (is_table_row(s)) {
       t.level.push_back(peak_kPa > 0 ? s.pressure_kPa / peak_kPa : 0.0);
       t.stretch.push_back(s.stretch);
       t.curvature_per_mm.push_back(s.curvature_vector_per_mm);
