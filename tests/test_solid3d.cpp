@@ -131,24 +131,33 @@ TEST_CASE("3D chamber pressure form: exact box volume, gradient and load stiffne
   }
 }
 
+namespace {
+/// The [0,2]×[0,3]×[0,4] box as a cavity of `nodes`-node hexahedra with its top face (z = 4) cut
+/// away, and with `half` its y = 0 face too, closed by add_chamber_lids along the cut.
+Mesh cut_box_cavity(int nodes, bool half) {
+  Mesh linear = box_mesh(Eigen::Vector3d::Zero(), Eigen::Vector3d(2, 3, 4), 2, 2, 2, 1.0);
+  linear.chambers.push_back(boundary_chamber(linear));
+  Mesh mesh = promoted(linear, nodes);
+  std::vector<int> top;
+  for (int n = 0; n < mesh.num_nodes(); ++n)
+    if (mesh.X(n, 2) == 4.0) top.push_back(n);
+  const auto on = [&](const std::vector<int>& f, int axis, double value) {
+    return std::all_of(f.begin(), f.end(), [&](int n) { return mesh.X(n, axis) == value; });
+  };
+  std::erase_if(mesh.chambers[0].facets,
+                [&](const std::vector<int>& f) { return on(f, 2, 4.0) || (half && on(f, 1, 0.0)); });
+  add_chamber_lids(mesh, top);
+  return mesh;
+}
+}  // namespace
+
 TEST_CASE("3D chamber lids close a cavity cut open, on a closed loop and on a chain ending on y = 0", "[solid3d][cell]") {
   // The box cavity with its top face (z = 4) cut away, and once also its y = 0 face: a
   // symmetry plane through the origin adds nothing to V (chamber_pressure_form.hpp), so
   // the lid's chain then ends on it and its fan closes along it.
   for (int nodes : kHexKinds)
     for (const bool half : {false, true}) {
-      Mesh linear = box_mesh(Eigen::Vector3d::Zero(), Eigen::Vector3d(2, 3, 4), 2, 2, 2, 1.0);
-      linear.chambers.push_back(boundary_chamber(linear));
-      Mesh mesh = promoted(linear, nodes);
-      std::vector<int> top;
-      for (int n = 0; n < mesh.num_nodes(); ++n)
-        if (mesh.X(n, 2) == 4.0) top.push_back(n);
-      auto& facets = mesh.chambers[0].facets;
-      const auto on = [&](const std::vector<int>& f, int axis, double value) {
-        return std::all_of(f.begin(), f.end(), [&](int n) { return mesh.X(n, axis) == value; });
-      };
-      std::erase_if(facets, [&](const std::vector<int>& f) { return on(f, 2, 4.0) || (half && on(f, 1, 0.0)); });
-      add_chamber_lids(mesh, top);
+      const Mesh mesh = cut_box_cavity(nodes, half);
       const std::string label = std::to_string(nodes) + "-node facets" + (half ? ", open at y = 0" : "");
       INFO(label);
       REQUIRE(mesh.chambers[0].lids.size() == 1);
@@ -171,6 +180,31 @@ TEST_CASE("3D chamber lids close a cavity cut open, on a closed loop and on a ch
       // A closed surface's volume does not depend on the origin (in the plane y = 0 for the half).
       CHECK(pressure.chamber->volume(shifted) == Approx(24.0).epsilon(1e-13));
       pressure.check_derivatives(0.3, label);
+    }
+}
+
+TEST_CASE("3D chamber lids follow the quadratic facets' curved edges on the cut", "[solid3d][cell]") {
+  // The box cavity cut open at z = 4 as above, mapped by φ(x, y, z) = (x + a y², y (1 + b x), z):
+  // the cut stays flat but its edges along y become parabolas, which quadratic facets carry exactly.
+  // det ∇φ = 1 + b x − 2ab y², so the cavity's volume is 24 + 24 b − 144 a b over [0,2]×[0,3]×[0,4];
+  // a fan of chords would leave slivers open between them and the edges (the volume then moves
+  // under a rigid translation). φ keeps y = 0 on itself, so the half chain closes along it too.
+  const double a = 0.05, b = 0.04, exact = 24 + 24 * b - 144 * a * b;
+  for (int nodes : {20, 27})
+    for (const bool half : {false, true}) {
+      const Mesh mesh = cut_box_cavity(nodes, half);
+      INFO(nodes << "-node facets" << (half ? ", open at y = 0" : ""));
+      const test::PressureOnly pressure(mesh, 0.3);
+      const Vector X = pressure.problem->reference_positions();
+      Vector y(X.size()), shifted(X.size());
+      for (int n = 0; n < mesh.num_nodes(); ++n) {
+        const Eigen::Vector3d p = X.segment<3>(3 * n);
+        y.segment<3>(3 * n) = Eigen::Vector3d(p.x() + a * p.y() * p.y(), p.y() * (1 + b * p.x()), p.z());
+        shifted.segment<3>(3 * n) = y.segment<3>(3 * n) + Eigen::Vector3d(0.7, 0.0, -1.3);
+      }
+      CHECK(pressure.chamber->volume(y) == Approx(exact).epsilon(1e-12));
+      CHECK(pressure.chamber->volume(shifted) == Approx(exact).epsilon(1e-12));
+      pressure.check_derivatives(0.3, "curved cut");
     }
 }
 

@@ -109,9 +109,18 @@ FacetDerivatives quad_facet_volume(const Vector& x, const std::vector<int>& node
   return d;
 }
 
-// A lid (mesh.hpp, chamber_lids.hpp): the fan of triangles (c, x_i, x_i+1) from the loop's
-// centroid c = (1/m) Σ x_l, the last back to the first. Each triangle adds the signed volume of
-// its cone from the origin, T = (1/6) det[c, a, b], trilinear in (c, a, b):
+// A lid (mesh.hpp, chamber_lids.hpp): the cone from the loop's centroid c = (1/m) Σ x_l over the
+// loop's edges, the last back to the first. A straight edge (a, b) adds the signed volume of its
+// triangle's cone from the origin, T = (1/6) det[c, a, b]. On a quadratic mesh the loop runs
+// corner, midside, corner, …, and its edges are the facets' parabolas γ(s) = Σ N_i(s) x_i through
+// (a, m, b); the cone over γ adds (1/6) ∫ det[c, γ, γ'] ds = Σ_ij (1/6) M_ij det[c, x_i, x_j] with
+// M_ij = ∫₋₁¹ N_i N_j' ds, whose antisymmetric part gives
+//   (1/6) [ (4/3) det[c, a, m] + (4/3) det[c, m, b] − (1/3) det[c, a, b] ]
+// (Simpson's weights; a straight edge with m at its middle gives det[c, a, b] back). Without it
+// the fan of chords leaves slivers open between the chords and the facets' curved edges, and the
+// volume is not a volume (it changes under a rigid translation; ~1 % of a chamber's section).
+// An open chain (a half model's, ending on the mirror plane) closes with a straight edge.
+// Every term is trilinear in (c, a, b):
 //   ∂T/∂c = (a×b)/6, ∂T/∂a = (b×c)/6, ∂T/∂b = (c×a)/6,
 //   ∂²T/∂c∂a = −[b]×/6, ∂²T/∂c∂b = [a]×/6, ∂²T/∂a∂b = −[c]×/6 (and their transposes),
 // and c's share goes to every loop node with weight 1/m.
@@ -121,7 +130,26 @@ struct LidDerivatives {
   Eigen::MatrixXd h;
 };
 
-LidDerivatives lid_volume(const Vector& x, const std::vector<int>& loop, bool want_hessian) {
+/// The lid's cone terms: (i, j, w) adds w·(1/6) det[c, x_loop[i], x_loop[j]].
+struct LidTerm {
+  int i, j;
+  double w;
+};
+std::vector<LidTerm> lid_terms(int m, bool quadratic) {
+  std::vector<LidTerm> terms;
+  int i = 0;
+  if (quadratic)  // closed loops: every edge a parabola; open chains: the last corner closes straight
+    for (; i + 2 <= m; i += 2) {
+      const int a = i, mid = i + 1, b = (i + 2) % m;
+      terms.push_back({a, mid, 4.0 / 3});
+      terms.push_back({mid, b, 4.0 / 3});
+      terms.push_back({a, b, -1.0 / 3});
+    }
+  for (; i < m; ++i) terms.push_back({i, (i + 1) % m, 1.0});
+  return terms;
+}
+
+LidDerivatives lid_volume(const Vector& x, const std::vector<int>& loop, bool quadratic, bool want_hessian) {
   const int m = static_cast<int>(loop.size());
   LidDerivatives d;
   d.g = Eigen::VectorXd::Zero(3 * m);
@@ -130,19 +158,20 @@ LidDerivatives lid_volume(const Vector& x, const std::vector<int>& loop, bool wa
   for (int n : loop) c += x.segment<3>(3 * n);
   c /= m;
   Eigen::Vector3d gc = Eigen::Vector3d::Zero();   // ∂V/∂c
-  Eigen::MatrixXd hc = Eigen::MatrixXd::Zero(3, 3 * m);  // ∂²V/∂c∂x_l through the triangles' a and b
-  for (int i = 0; i < m; ++i) {
-    const int j = (i + 1) % m;
+  Eigen::MatrixXd hc = Eigen::MatrixXd::Zero(3, 3 * m);  // ∂²V/∂c∂x_l through the terms' a and b
+  for (const LidTerm& t : lid_terms(m, quadratic)) {
+    const int i = t.i, j = t.j;
+    const double w = t.w / 6;
     const Eigen::Vector3d a = x.segment<3>(3 * loop[i]), b = x.segment<3>(3 * loop[j]);
-    d.V += c.dot(a.cross(b)) / 6;
-    gc += a.cross(b) / 6;
-    d.g.segment<3>(3 * i) += b.cross(c) / 6;
-    d.g.segment<3>(3 * j) += c.cross(a) / 6;
+    d.V += w * c.dot(a.cross(b));
+    gc += w * a.cross(b);
+    d.g.segment<3>(3 * i) += w * b.cross(c);
+    d.g.segment<3>(3 * j) += w * c.cross(a);
     if (!want_hessian) continue;
-    hc.block<3, 3>(0, 3 * i) -= skew(b) / 6;
-    hc.block<3, 3>(0, 3 * j) += skew(a) / 6;
-    d.h.block<3, 3>(3 * i, 3 * j) -= skew(c) / 6;
-    d.h.block<3, 3>(3 * j, 3 * i) += skew(c) / 6;
+    hc.block<3, 3>(0, 3 * i) -= w * skew(b);
+    hc.block<3, 3>(0, 3 * j) += w * skew(a);
+    d.h.block<3, 3>(3 * i, 3 * j) -= w * skew(c);
+    d.h.block<3, 3>(3 * j, 3 * i) += w * skew(c);
   }
   for (int l = 0; l < m; ++l) d.g.segment<3>(3 * l) += gc / m;
   if (want_hessian)
@@ -198,7 +227,7 @@ void ChamberPressureForm::declare_pattern(SparsePattern& pattern) {
 double ChamberPressureForm::volume(const Vector& x) const {
   double V = 0.0;
   for (const auto& f : mesh_.chambers[chamber_].facets) V += facet_volume(mesh_.dim, x, f).V;
-  for (const auto& lid : mesh_.chambers[chamber_].lids) V += lid_volume(x, lid, false).V;
+  for (const auto& lid : mesh_.chambers[chamber_].lids) V += lid_volume(x, lid, quadratic_lids(), false).V;
   return V;
 }
 
@@ -210,7 +239,7 @@ Vector ChamberPressureForm::volume_gradient(const Vector& x) const {
     for (int k = 0; k < d.dofs; ++k) g[dim * f[k / dim] + k % dim] += d.g[k];
   }
   for (const auto& lid : mesh_.chambers[chamber_].lids) {
-    const auto d = lid_volume(x, lid, false);
+    const auto d = lid_volume(x, lid, quadratic_lids(), false);
     for (int k = 0; k < d.g.size(); ++k) g[3 * lid[k / 3] + k % 3] += d.g[k];
   }
   return g;
@@ -235,7 +264,7 @@ FormStatus ChamberPressureForm::add(const Vector& x, double* value, Vector* grad
   }
   const auto& lids = mesh_.chambers[chamber_].lids;
   for (std::size_t k = 0; k < lids.size(); ++k) {
-    const auto d = lid_volume(x, lids[k], hessian && p != 0.0);
+    const auto d = lid_volume(x, lids[k], quadratic_lids(), hessian && p != 0.0);
     if (value) *value -= p * d.V;
     if (gradient)
       for (int i = 0; i < d.g.size(); ++i) (*gradient)[3 * lids[k][i / 3] + i % 3] -= p * d.g[i];

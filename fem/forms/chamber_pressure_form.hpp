@@ -24,8 +24,9 @@
 // The facets must close the cavity: on an open surface (1/3)∫ x·n dA is not a
 // volume and its gradient is not the pressure load. Where a cut leaves the cavity
 // open (a ring-pitch cell), the chamber's lids (mesh.hpp) close it: each adds the
-// cones of its fan's triangles, (1/6) det[c, x_i, x_i+1], so the fluid's push on
-// the cut is part of the same potential and the tangent stays symmetric.
+// cone from its centroid over its edges, (1/6) det[c, x_i, x_i+1] per straight edge
+// and Simpson's weights over a quadratic one (chamber_pressure_form.cpp), so the
+// fluid's push on the cut is part of the same potential and the tangent stays symmetric.
 #include "fem/forms/form.hpp"
 #include "fem/mesh/mesh.hpp"
 
@@ -49,6 +50,7 @@ class ChamberPressureForm : public Form {
 
  private:
   double pressure() const;
+  bool quadratic_lids() const { return mesh_.nodes_per_element > 8; }  // lid loops: corner, midside, …
   const Mesh& mesh_;
   int chamber_;
   const LoadState& load_;
