@@ -6,6 +6,9 @@
 //                  [--compare curve.csv]   (a `softarm simulate` curve of the same 3CA)
 //                  [--moment-Nmm Mx,My]    (a dead end moment on every cell besides the pressures:
 //                                           how far the cells' linear compliance carries)
+//                  [--end-rings N]         (also both ends through their first N rings,
+//                                           fem/scenes/tca_end_cell.hpp: their own turn against
+//                                           the cells' κ₀ over the same length, and the rod with them)
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -26,13 +29,14 @@ using namespace softarm;
 
 int main(int argc, char** argv) {
   std::string config = "configs/tca_thesis.json", rings_arg, compare;
-  int axial_level = -1;
+  int axial_level = -1, end_rings = 0;
   fem::CellEndLoad end_load;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--rings" && i + 1 < argc) rings_arg = argv[++i];
     else if (a == "--axial-level" && i + 1 < argc) axial_level = std::atoi(argv[++i]);
     else if (a == "--compare" && i + 1 < argc) compare = argv[++i];
+    else if (a == "--end-rings" && i + 1 < argc) end_rings = std::atoi(argv[++i]);
     else if (a == "--moment-Nmm" && i + 1 < argc) {
       double mx = 0, my = 0;
       std::sscanf(argv[++i], "%lf,%lf", &mx, &my);
@@ -86,7 +90,37 @@ int main(int argc, char** argv) {
     for (double p, angle; std::getline(in, line);)
       if (std::sscanf(line.c_str(), "%lf,%lf", &p, &angle) == 2) reference[p] = angle;
   }
-  fem::CellRodSpec rod = fem::tca_cell_rod(spec, cells);
+  std::vector<fem::TcaEndCellResult> ends;
+  constexpr double kDeg = 180 / 3.14159265358979;
+  if (end_rings > 0)
+    for (const fem::TcaEnd end : {fem::TcaEnd::bottom, fem::TcaEnd::top}) {
+      const auto e = fem::run_tca_end_cell(spec, end, end_rings);
+      ends.push_back(e);
+      cell_seconds += e.seconds;
+      std::printf("\n%s end through %d rings (%.3f mm): %s, %d dofs, %d Newton, %.1f s; %s%s\n",
+                  end == fem::TcaEnd::top ? "clamped" : "free", end_rings, e.length_mm, e.element_name.c_str(), e.dofs,
+                  e.path.path.stats.newton_iterations, e.seconds, fem::to_string(e.path.outcome),
+                  e.path.diagnosis.empty() ? "" : (": " + e.path.diagnosis).c_str());
+      std::printf("%12s %12s %14s %12s %14s\n", "pressure_kPa", "turn_deg", "cells_turn_deg", "extra_deg",
+                  "elongation_mm");
+      // The cells' turn over the same length, as the weightless rod without ends integrates it
+      // (caps rigid): the rod's bending without the end table, less with it, plus the end's turn.
+      fem::CellRodSpec part = fem::tca_cell_rod(spec, cells);
+      part.gravity_along_bend_m_s2 = part.gravity_along_axis_m_s2 = 0;
+      for (const auto& s : e.states) {
+        if (!s.is_output) continue;
+        double cells_turn = NAN;
+        part.ends.clear();
+        if (const auto without = fem::solve_cell_rod(part, s.pressure_kPa); without.ok) {
+          part.ends = {fem::end_table(e)};
+          if (const auto with = fem::solve_cell_rod(part, s.pressure_kPa); with.ok)
+            cells_turn = without.bending_angle_deg - with.bending_angle_deg + s.rotation_rad * kDeg;
+        }
+        std::printf("%12.2f %12.4f %14.4f %12.4f %14.4f\n", s.pressure_kPa, s.rotation_rad * kDeg, cells_turn,
+                    s.rotation_rad * kDeg - cells_turn, s.elongation_mm);
+      }
+    }
+  fem::CellRodSpec rod = fem::tca_cell_rod(spec, cells, ends);
   fem::CellRodSpec weightless = rod;
   weightless.gravity_along_bend_m_s2 = weightless.gravity_along_axis_m_s2 = 0;
   const auto t0 = std::chrono::steady_clock::now();

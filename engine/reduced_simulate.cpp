@@ -69,8 +69,10 @@ int simulate_cell_rod_tca(const fem::SceneConfig& config) {
   std::cout << "cell rod: ring-pitch cells about rings";
   const fem::CellRodTcaResult r = fem::run_cell_rod_tca(spec);
   for (int ring : r.rings) std::cout << " " << ring;
-  std::cout << " (" << r.cell_dofs << " dofs each, " << std::setprecision(3) << r.cell_seconds << " s), the rod "
-            << r.rod_seconds << " s\n";
+  std::cout << " (" << r.cell_dofs << " dofs each";
+  if (r.end_rings > 0)
+    std::cout << "; both ends through " << r.end_rings << " rings, " << r.end_cell_dofs << " dofs each";
+  std::cout << ", " << std::setprecision(3) << r.cell_seconds << " s), the rod " << r.rod_seconds << " s\n";
   if (r.spatial) std::cout << "(the loads leave one plane: the spatial cell rod, with the cells' torsion)\n";
   std::ofstream csv = open_output_file(dir, "curve.csv");
   csv << "pressure_kPa,bending_angle_deg,tip_along_bend_mm,tip_z_mm\n";
@@ -87,7 +89,8 @@ int simulate_cell_rod_tca(const fem::SceneConfig& config) {
   if (r.target_pressure_kPa) std::cout << "at " << std::fixed << std::setprecision(2) << *r.target_pressure_kPa << " kPa\n";
   else std::cout << "not reached\n";
   std::cout.unsetf(std::ios::floatfield);
-  if (!r.converged) std::cout << "outcome: stopped — " << r.diagnosis << "\n";
+  // A cell's or an end's limit point is a result (the 3CA balloons there), as on the 3D model.
+  if (!r.converged) std::cout << "outcome: " << fem::to_string(r.outcome) << " — " << r.diagnosis << "\n";
   nlohmann::json curve = nlohmann::json::array();
   for (const auto& s : r.curve)
     curve.push_back({{"pressure_kPa", s.pressure_kPa}, {"bending_angle_deg", s.bending_angle_deg},
@@ -95,11 +98,12 @@ int simulate_cell_rod_tca(const fem::SceneConfig& config) {
   write_json_file(dir, "summary.json",
                   {{"scene", "tca"}, {"model", model_json(config)}, {"curve", curve},
                    {"target_pressure_kPa", r.target_pressure_kPa ? nlohmann::json(*r.target_pressure_kPa) : nlohmann::json()},
-                   {"cell_rings", r.rings}, {"cell_dofs", r.cell_dofs}, {"rod", r.spatial ? "spatial" : "planar"},
-                   {"outcome", r.converged ? "completed" : "stopped"},
+                   {"cell_rings", r.rings}, {"cell_dofs", r.cell_dofs},
+                   {"end_cell_rings", r.end_rings}, {"end_cell_dofs", r.end_cell_dofs}, {"rod", r.spatial ? "spatial" : "planar"},
+                   {"outcome", fem::to_string(r.outcome)}, {"reached_pressure_kPa", r.reached_pressure_kPa},
                    {"diagnosis", r.diagnosis}, {"cell_seconds", r.cell_seconds}, {"rod_seconds", r.rod_seconds}});
   std::cout << "written: " << dir << "/curve.csv, " << dir << "/summary.json\n";
-  return r.converged ? 0 : 1;
+  return r.outcome == fem::PathOutcome::stalled ? 1 : 0;
 }
 
 int simulate_cell_rod_spl(const fem::SceneConfig& config) {

@@ -88,7 +88,7 @@ namespace {
 SolidSegmentCheck check_on_cell_rod(fem::TcaSceneSpec spec, int segment, const SegmentMeasures& rod,
                                     const std::function<void(double, double)>& progress) {
   const auto t0 = std::chrono::steady_clock::now();
-  fem::use_cell_rod_rung_mesh(spec);
+  fem::use_cell_rod_rung(spec);
   const fem::CellRodTcaResult r = fem::run_cell_rod_tca(spec);
   if (progress)
     for (const auto& state : r.curve) progress(state.pressure_kPa, state.bending_angle_deg);

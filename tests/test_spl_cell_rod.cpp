@@ -36,7 +36,8 @@ TEST_CASE("The SPL cell rod bends a lone distal segment as the 3CA cell rod does
   tca.newton = spl.newton;
   tca.steps = spl.steps;
   tca.limit = spl.limit;
-  use_cell_rod_rung_mesh(tca);
+  use_cell_rod_rung(tca);
+  tca.cell_rod_end_rings = 0;  // the SPL's segments have rigid caps on their cells (no end cells yet)
   const CellRodTcaResult planar = run_cell_rod_tca(tca);
   REQUIRE(planar.converged);
 

@@ -13,9 +13,9 @@
 using namespace softarm::fem;
 
 namespace {
-/// The thesis 3CA scene (configs/tca_thesis.json: Hex20 at 2×2×2 points, level 1).
+/// The thesis 3CA scene on its 3D mesh (configs/convergence/tca_thesis_hex20r.json: Hex20 at 2×2×2 points, level 1).
 TcaSceneSpec thesis_cell_spec() {
-  return load_scene_config(std::string(SOFTARM_SOURCE_DIR) + "/configs/tca_thesis.json").tca;
+  return load_scene_config(std::string(SOFTARM_SOURCE_DIR) + "/configs/convergence/tca_thesis_hex20r.json").tca;
 }
 }  // namespace
 
@@ -127,7 +127,7 @@ TEST_CASE("A cell's torsional stiffness: under the polar moment of a silicone ce
 TEST_CASE("Gravity across the bend takes the 3CA's cell rod through the spatial rod, consistently with the planar one",
           "[cell]") {
   TcaSceneSpec spec = thesis_cell_spec();
-  use_cell_rod_rung_mesh(spec);
+  use_cell_rod_rung(spec);
   spec.chamber_pressure_kPa = {0, 60, 60};  // bends towards +x
   spec.output_pressures_kPa = {30, 60};
   spec.gravity_m_s2 = Eigen::Vector3d(9.80665, 0, 0);  // along the bend: one plane

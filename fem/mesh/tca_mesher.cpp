@@ -21,6 +21,11 @@ struct BandKind {
 
 constexpr double kMaxBandHeight = 4.0;  // mm: longer bands get more element layers (level 1)
 
+/// Element layers through an axial band of height h at a level.
+int band_divisions(double h, int level) {
+  return level * std::max(1, static_cast<int>(std::ceil(h / kMaxBandHeight - 1e-9)));
+}
+
 /// Axial bands of one actuator: breakpoints at both ends, the cap interfaces and
 /// both faces of every ring. A cap interface closer than 0.3·a to a ring face is
 /// moved onto it (the meshed cap then differs from t_c by < 0.3·a; without this a
@@ -45,7 +50,7 @@ void actuator_bands(const RraDesign& d, double a, int level, std::vector<Extrusi
     BandKind kind;
     kind.cap = mid < caps[0] || mid > caps[1];
     for (int k = 1; k <= d.ring_count; ++k) kind.ring = kind.ring || std::abs(mid - d.ring_centre_z(k)) < a / 2;
-    layers.push_back({z[i], z[i + 1], level * std::max(1, static_cast<int>(std::ceil(h / kMaxBandHeight - 1e-9)))});
+    layers.push_back({z[i], z[i + 1], band_divisions(h, level)});
     kinds.push_back(kind);
   }
 }
@@ -68,7 +73,24 @@ struct StackPiece {
   double z0 = 0, z1 = 0;
   int first_chamber = 0;               // mesh chamber index of the segment's actuator 0
   int cell_ring = 0;                   // > 0: one ring pitch about this ring, a prism of its section
+  double local_z0 = 0;                 // the segment's own height at z0: z1 − z0 short of its length
+                                       // meshes a window of it (mesh_tca_end)
 };
+
+/// The bands of `layers` cut to [w0, w1], each cut band with its own layer count at `level`.
+void clip_bands(double w0, double w1, int level, std::vector<ExtrusionLayer>& layers, std::vector<BandKind>& kinds) {
+  std::vector<ExtrusionLayer> kept_layers;
+  std::vector<BandKind> kept_kinds;
+  for (std::size_t i = 0; i < layers.size(); ++i) {
+    const double z0 = std::max(layers[i].z0, w0), z1 = std::min(layers[i].z1, w1);
+    if (z1 - z0 <= 1e-9 * (w1 - w0)) continue;
+    const bool cut = z0 != layers[i].z0 || z1 != layers[i].z1;
+    kept_layers.push_back({z0, z1, cut ? band_divisions(z1 - z0, level) : layers[i].divisions});
+    kept_kinds.push_back(kinds[i]);
+  }
+  layers = std::move(kept_layers);
+  kinds = std::move(kept_kinds);
+}
 
 /// The bands of a ring-pitch cell: half a gap, the ring, half a gap, on z ∈ [0, pitch].
 void cell_bands(const RraDesign& d, double a, int level, std::vector<ExtrusionLayer>& layers,
@@ -76,7 +98,7 @@ void cell_bands(const RraDesign& d, double a, int level, std::vector<ExtrusionLa
   const double p = d.pitch(), z[4] = {0.0, 0.5 * (p - a), 0.5 * (p + a), p};
   for (int i = 0; i < 3; ++i) {
     const double h = z[i + 1] - z[i];
-    layers.push_back({z[i], z[i + 1], level * std::max(1, static_cast<int>(std::ceil(h / kMaxBandHeight - 1e-9)))});
+    layers.push_back({z[i], z[i + 1], band_divisions(h, level)});
     kinds.push_back({false, i == 1});
   }
 }
@@ -139,7 +161,8 @@ Mesh mesh_stack(const std::vector<StackPiece>& pieces, int actuators, int chambe
       if (z > p.z1 + 1e-9 * (1 + std::abs(p.z1)) && i + 1 < pieces.size()) continue;
       if (p.segment && p.cell_ring > 0)
         return segment_geometry(*p.segment, p.segment->actuator.ring_centre_z(p.cell_ring), angle);
-      if (p.segment) return segment_geometry(*p.segment, std::clamp(z - p.z0, 0.0, p.z1 - p.z0), angle);
+      if (p.segment)
+        return segment_geometry(*p.segment, std::clamp(z - p.z0 + p.local_z0, 0.0, p.segment->actuator.length_mm), angle);
       return lerp(bottom[i], top[i], std::clamp((z - p.z0) / (p.z1 - p.z0), 0.0, 1.0));
     }
     return top.back();
@@ -166,10 +189,12 @@ Mesh mesh_stack(const std::vector<StackPiece>& pieces, int actuators, int chambe
     const RraDesign& rra = p.segment->actuator;
     if (p.cell_ring > 0)
       cell_bands(rra, square_ring_side_mm(rra), axial_level, bands, band_kinds);
-    else
+    else {
       actuator_bands(rra, rra.ring_count > 0 ? square_ring_side_mm(rra) : 0.0, axial_level, bands, band_kinds);
+      clip_bands(p.local_z0, p.local_z0 + p.z1 - p.z0, axial_level, bands, band_kinds);
+    }
     for (std::size_t b = 0; b < bands.size(); ++b) {
-      layers.push_back({bands[b].z0 + p.z0, bands[b].z1 + p.z0, bands[b].divisions});
+      layers.push_back({bands[b].z0 - p.local_z0 + p.z0, bands[b].z1 - p.local_z0 + p.z0, bands[b].divisions});
       kinds.push_back({band_kinds[b], static_cast<int>(i)});
     }
   }
@@ -231,6 +256,18 @@ Mesh mesh_tca_cell(const TcaDesign& design, int ring, const SolidMeshOptions& op
   Mesh mesh = mesh_stack({{&design, 0.0, rra.pitch(), 0, ring}}, 3, 3, options, numbered_chambers(3));
   add_chamber_lids(mesh, mesh.node_sets.at("bottom"));
   add_chamber_lids(mesh, mesh.node_sets.at("top"));
+  return mesh;
+}
+
+Mesh mesh_tca_end(const TcaDesign& design, TcaEnd end, int rings, const SolidMeshOptions& options) {
+  const RraDesign& rra = design.actuator;
+  if (rings < 1 || 2 * rings >= rra.ring_count)
+    throw std::logic_error("mesh_tca_end: " + std::to_string(rings) + " rings at an end of a 3CA with " +
+                           std::to_string(rra.ring_count) + " (needs more than twice as many)");
+  const double l = rra.length_mm, h = rings * rra.pitch();
+  const double z0 = end == TcaEnd::bottom ? 0.0 : l - h;
+  Mesh mesh = mesh_stack({{&design, z0, z0 + h, 0, 0, z0}}, 3, 3, options, numbered_chambers(3));
+  add_chamber_lids(mesh, mesh.node_sets.at(end == TcaEnd::bottom ? "top" : "bottom"));
   return mesh;
 }
 

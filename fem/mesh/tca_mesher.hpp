@@ -44,6 +44,15 @@ Mesh mesh_tca(const TcaDesign& design, const SolidMeshOptions& options);
 /// for a ring outside 1..ring_count.
 Mesh mesh_tca_cell(const TcaDesign& design, int ring, const SolidMeshOptions& options);
 
+enum class TcaEnd { bottom, top };
+
+/// An end of a 3CA as meshed by mesh_tca, from its end face to the middle of the gap after its
+/// `rings`-th ring: the cap, the rings near it and the taper there, z ∈ [0, rings·pitch] (bottom)
+/// or [l − rings·pitch, l] (top), in the 3CA's own z. Its chambers, open at the cut, are closed
+/// there by lids (chamber_lids.hpp). Node sets "bottom", "top" and, in half models, "symmetry".
+/// Throws std::logic_error unless 1 ≤ rings and 2·rings < ring_count.
+Mesh mesh_tca_end(const TcaDesign& design, TcaEnd end, int rings, const SolidMeshOptions& options);
+
 /// A lone RRA along z ∈ [0, l] in 3D: parts "tube", "rings"; chamber 1; node sets
 /// as mesh_tca. The 3D twin of the axisymmetric model with square rings.
 Mesh mesh_rra_3d(const RraDesign& design, const SolidMeshOptions& options);

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
 
 namespace softarm::fem {
 namespace {
@@ -31,6 +32,23 @@ CellRodState solve_cell_rod(const CellRodSpec& spec, double pressure_kPa) {
     z.push_back(c.z_mm), stretch.push_back(*l), curvature.push_back(*k), compliance.push_back(*m);
     mass.push_back(c.mass_per_length_kg_per_mm);
   }
+  // The ends' own turn and stretch per unit length, over their reference lengths from z = 0
+  // (the free end) and from z = L (the clamp).
+  struct EndRate {
+    double z0, z1, curvature, stretch;
+  };
+  std::vector<EndRate> ends;
+  for (const EndTable& e : spec.ends) {
+    const auto turn = along_ramp(e.pressure_kPa, e.rotation_rad, pressure_kPa);
+    const auto longer = along_ramp(e.pressure_kPa, e.elongation_mm, pressure_kPa);
+    if (!turn || !longer) {
+      out.diagnosis = std::string("the ") + (e.at_clamp ? "clamped" : "free") + " end reached " +
+                      std::to_string(e.pressure_kPa.empty() ? 0.0 : e.pressure_kPa.back()) + " kPa only";
+      return out;
+    }
+    const double z0 = e.at_clamp ? spec.length_mm - e.length_mm : 0.0;
+    ends.push_back({z0, z0 + e.length_mm, *turn / e.length_mm, 1 + *longer / e.length_mm});
+  }
   // Nodes along S from the clamp (z = L) to the free end (z = 0), values at interval midpoints.
   const int n = spec.intervals;
   const double L = spec.length_mm, dS = L / n;
@@ -40,6 +58,11 @@ CellRodState solve_cell_rod(const CellRodSpec& spec, double pressure_kPa) {
     const bool cap = zi < spec.cap_mm || zi > L - spec.cap_mm;
     k0[i] = cap ? 0.0 : lagrange(z, curvature, zi);
     l0[i] = cap ? 1.0 : lagrange(z, stretch, zi);
+    for (const EndRate& e : ends) {  // the share of the interval inside an end takes the end's rates
+      const double share = std::clamp((std::min(zi + dS / 2, e.z1) - std::max(zi - dS / 2, e.z0)) / dS, 0.0, 1.0);
+      k0[i] = share * e.curvature + (1 - share) * k0[i];
+      l0[i] = share * e.stretch + (1 - share) * l0[i];
+    }
     c0[i] = lagrange(z, compliance, zi);
     w[i] = lagrange(z, mass, zi) * dS;  // kg per interval
   }

@@ -15,7 +15,7 @@
 // (solid silicone) neither stretch nor bend on their own: κ₀ = 0, λ₀ = 1 there.
 //
 // What it leaves out, by construction: the caps' and the clamp's own disturbance of
-// the section's response, the taper within one pitch, the axial force of the weight
+// the section's response (unless end tables give it: EndTable), the taper within one pitch, the axial force of the weight
 // on λ₀ and κ₀, and anything out of the bend plane.
 #include <string>
 #include <vector>
@@ -29,10 +29,21 @@ struct CellTable {
   double mass_per_length_kg_per_mm = 0;
 };
 
+/// An end of the 3CA measured on its own (fem/scenes/tca_end_cell.hpp): over `length_mm` from
+/// its end face, its own rotation and elongation under pressure replace the cells' κ₀ and λ₀
+/// (spread evenly over that length: the angle at the tip is exact, the path within the end
+/// approximate); the bending compliance there stays the cells'.
+struct EndTable {
+  bool at_clamp = false;
+  double length_mm = 0;
+  std::vector<double> pressure_kPa, rotation_rad, elongation_mm;
+};
+
 struct CellRodSpec {
   double length_mm = 0;
-  double cap_mm = 0;                 // solid cap at each end
+  double cap_mm = 0;                 // solid cap at each end (where no EndTable covers it)
   std::vector<CellTable> cells;      // at least one
+  std::vector<EndTable> ends;        // none, or either end or both
   double gravity_along_bend_m_s2 = 0;  // gravity's component along the bend direction
   double gravity_along_axis_m_s2 = 0;  // ... along the user's +z (the clamp is at z = length)
   int intervals = 320;

@@ -33,6 +33,9 @@ struct ModelLevel {
   /// With `reduced`: the cell rod (fem/reduced/cell_rod.hpp; the SPL's spatial_cell_rod.hpp), whose
   /// ring-pitch cells are 3D models of the mesh settings above, instead of the fibre-section rod.
   bool cell_rod = false;
+  /// With `cell_rod`: both ends of each 3CA through this many rings as 3D end cells
+  /// (fem/scenes/tca_end_cell.hpp); 0: rigid caps on the cells' response.
+  int end_rings = 0;
 };
 
 struct FidelityLadder {

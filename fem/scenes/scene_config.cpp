@@ -327,6 +327,7 @@ void apply_fidelity(SceneConfig& config, double target_error_percent, const std:
     config.tca.serendipity = config.spl.serendipity = config.selection->level.serendipity;
     config.tca.integration = config.spl.integration =
         config.selection->level.reduced_integration ? ElementIntegration::reduced : ElementIntegration::full;
+    config.tca.cell_rod_end_rings = config.selection->level.end_rings;
   }
 }
 

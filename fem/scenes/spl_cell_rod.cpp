@@ -34,7 +34,7 @@ TcaSceneSpec spl_segment_cell_scene(const SplSceneSpec& spec, int n, int cell_le
   s.newton = spec.newton;
   s.steps = spec.steps;
   s.limit = spec.limit;
-  use_cell_rod_rung_mesh(s);
+  use_cell_rod_rung(s);
   return s;
 }
 

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "fem/core/parallel.hpp"
+#include "fem/scenes/cell_supports.hpp"
 #include "fem/forms/periodic_face_form.hpp"
 #include "fem/forms/plane_face_form.hpp"
 #include "fem/scenes/fidelity.hpp"
@@ -16,18 +17,6 @@
 
 namespace softarm::fem {
 namespace {
-// The plane's penalty per node: this many times the stiffest silicone's initial shear
-// modulus times 1 mm (plane_face_form.hpp).
-constexpr double kPlanePenaltyRatio = 1e4;
-
-/// The initial shear modulus of the cell's stiffest part but the rings (the penalties' scale).
-double stiffest_silicone_shear_modulus(const Mesh& mesh, const std::vector<Material>& materials) {
-  double mu = 0;
-  for (std::size_t p = 0; p < materials.size(); ++p)
-    if (mesh.part_names[p] != "rings") mu = std::max(mu, materials[p].law->initial_shear_modulus());
-  return mu;
-}
-
 /// The output states a rod's table takes: those with a positive definite tangent.
 bool is_table_row(const TcaCellState& s) { return s.is_output && s.bending_compliance_per_Nmm2 > 0; }
 }  // namespace
@@ -63,26 +52,10 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
   X.head(3 * pilot) = flattened_positions(mesh);
   X.tail<3>().setZero();
   DirichletConstraints bc;
-  std::vector<char> on_symmetry(mesh.num_nodes(), 0);
   for (int n : mesh.node_sets.at("bottom")) bc.fix(3 * n + 2);
   if (const auto it = mesh.node_sets.find("symmetry"); it != mesh.node_sets.end())
-    for (int n : it->second) bc.fix(3 * n + 1), on_symmetry[n] = 1;
-  // In-plane rigid motion of the bottom face: the node nearest the axis holds x (and y in a
-  // full model); in a full model the bottom node farthest from it holds its tangential
-  // direction too (rotation about z). The supports carry no force at equilibrium.
-  int centre = -1, far = -1;
-  double best = std::numeric_limits<double>::infinity(), farthest = -1;
-  for (int n : mesh.node_sets.at("bottom")) {
-    const double r = mesh.X.row(n).head<2>().norm();
-    if ((!out.model.half || on_symmetry[n]) && r < best) best = r, centre = n;
-    if (r > farthest) farthest = r, far = n;
-  }
-  bc.fix(3 * centre);
-  if (!out.model.half) {
-    bc.fix(3 * centre + 1);
-    const bool along_x = std::abs(mesh.X(far, 0)) < std::abs(mesh.X(far, 1));
-    bc.fix(3 * far + (along_x ? 0 : 1));
-  }
+    for (int n : it->second) bc.fix(3 * n + 1);
+  hold_in_plane_rigid_motion(mesh, mesh.node_sets.at("bottom"), out.model.half, bc);
   if (out.model.half) bc.fix(3 * pilot + 2);  // no slope across the mirror plane
   EnergyProblem problem(X, bc);
   auto elastic = make_elastic_form(mesh, materials, VolumetricTreatment::projected_dilatation,
@@ -186,15 +159,7 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
     out.states.back().is_output = true;
     if (out.path.path.completed) add_compliance(out.states.back(), x);
   } else {
-    PressurePathSpec path;
-    path.pressure_fractions = chambers.fractions;
-    path.gravity_preload = end_loaded;
-    path.max_pressure_kPa = chambers.peak_kPa;
-    path.output_pressures_kPa = spec.output_pressures_kPa;
-    path.newton = spec.newton;
-    path.steps = spec.steps;
-    path.limit = spec.limit;
-    path.node_dimension = 0;  // the pilot is not a node of the mesh
+    const PressurePathSpec path = cell_pressure_path(spec, chambers, end_loaded);
     out.path = run_pressure_path(problem, chambers.loaded, load, x, path, [&](const PressureState& s, const Vector& xs) {
       out.states.push_back(state_of(s.pressure_kPa, s.chamber_volume_mm3, xs));
       out.states.back().newton_iterations = s.newton_iterations;
@@ -287,11 +252,26 @@ SpatialCellTable spatial_cell_table(const TcaCellResult& cell, double peak_kPa) 
   return t;
 }
 
-CellRodSpec tca_cell_rod(const TcaSceneSpec& spec, const std::vector<TcaCellResult>& cells) {
+EndTable end_table(const TcaEndCellResult& end) {
+  EndTable t;
+  t.at_clamp = end.end == TcaEnd::top;
+  t.length_mm = end.length_mm;
+  for (const TcaEndState& s : end.states)
+    if (s.is_output) {
+      t.pressure_kPa.push_back(s.pressure_kPa);
+      t.rotation_rad.push_back(s.rotation_rad);
+      t.elongation_mm.push_back(s.elongation_mm);
+    }
+  return t;
+}
+
+CellRodSpec tca_cell_rod(const TcaSceneSpec& spec, const std::vector<TcaCellResult>& cells,
+                         const std::vector<TcaEndCellResult>& ends) {
   CellRodSpec rod;
   rod.length_mm = spec.design.actuator.length_mm;
   rod.cap_mm = spec.design.actuator.end_cap_thickness_mm;
   for (const auto& c : cells) rod.cells.push_back(cell_table(c));
+  for (const auto& e : ends) rod.ends.push_back(end_table(e));
   Eigen::Vector3d bend = tca_bend_direction(spec.chamber_pressure_kPa);
   if (bend.norm() > 0) bend.normalize();
   rod.gravity_along_bend_m_s2 = spec.gravity_m_s2.dot(bend);
@@ -299,7 +279,7 @@ CellRodSpec tca_cell_rod(const TcaSceneSpec& spec, const std::vector<TcaCellResu
   return rod;
 }
 
-void use_cell_rod_rung_mesh(TcaSceneSpec& spec) {
+void use_cell_rod_rung(TcaSceneSpec& spec) {
   for (const ModelLevel& m : fidelity_ladder("tca").levels)
     if (m.cell_rod) {
       spec.mesh_level = m.mesh_level;
@@ -307,6 +287,7 @@ void use_cell_rod_rung_mesh(TcaSceneSpec& spec) {
       spec.element_order = m.element_order;
       spec.serendipity = m.serendipity;
       spec.integration = m.reduced_integration ? ElementIntegration::reduced : ElementIntegration::full;
+      spec.cell_rod_end_rings = m.end_rings;
     }
 }
 
@@ -363,18 +344,26 @@ CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
   Eigen::Vector3d bend = tca_bend_direction(spec.chamber_pressure_kPa);
   if (bend.norm() > 0) bend.normalize();
   out.rings = cell_rod_rings(n);
-  std::vector<TcaCellResult> cells;
+  out.end_rings = !out.spatial && 2 * spec.cell_rod_end_rings < n ? spec.cell_rod_end_rings : 0;
+  const int end_count = out.end_rings > 0 ? 2 : 0;
+  std::vector<TcaCellResult> cells(out.rings.size());
+  std::vector<TcaEndCellResult> ends(end_count);
   std::vector<double> torsion(out.rings.size(), 0.0);
-  // The cells side by side, one thread each (parallel_tasks).
+  // The cells side by side, one thread each (parallel_tasks); the larger end cells first.
   const auto t_cells = std::chrono::steady_clock::now();
-  cells.resize(out.rings.size());
-  parallel_tasks(static_cast<int>(out.rings.size()), [&](int i) {
+  parallel_tasks(end_count + static_cast<int>(out.rings.size()), [&](int i) {
+    if (i < end_count) {
+      ends[i] = run_tca_end_cell(spec, i == 0 ? TcaEnd::bottom : TcaEnd::top, out.end_rings);
+      return;
+    }
+    i -= end_count;
     cells[i] = run_tca_cell(spec, out.rings[i]);
     if (out.spatial) torsion[i] = cell_torsion_stiffness(spec, out.rings[i]);
   });
   out.cell_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_cells).count();
   out.cell_dofs = cells.back().dofs;
-  const CellRodSpec rod = tca_cell_rod(spec, cells);
+  out.end_cell_dofs = ends.empty() ? 0 : ends.back().dofs;
+  const CellRodSpec rod = tca_cell_rod(spec, cells, ends);
   const double peak = *std::max_element(spec.chamber_pressure_kPa.begin(), spec.chamber_pressure_kPa.end());
   SpatialCellRodSpec spatial;
   if (out.spatial) {
@@ -404,6 +393,8 @@ CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
       out.diagnosis = s.diagnosis;
       for (const auto& c : cells)
         if (c.path.outcome != PathOutcome::completed) out.diagnosis += " (" + c.path.diagnosis + ")";
+      for (const auto& e : ends)
+        if (e.path.outcome != PathOutcome::completed) out.diagnosis += " (" + e.path.diagnosis + ")";
       break;
     }
     out.curve.push_back(s);
@@ -419,6 +410,8 @@ CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
   if (out.converged) out.outcome = PathOutcome::completed;
   for (const auto& c : cells)
     if (!out.converged && c.path.outcome == PathOutcome::limit_point) out.outcome = PathOutcome::limit_point;
+  for (const auto& e : ends)
+    if (!out.converged && e.path.outcome == PathOutcome::limit_point) out.outcome = PathOutcome::limit_point;
   out.target_pressure_kPa = pressure_at_bending(states, spec.target_bending_deg);
   return out;
 }

@@ -23,6 +23,7 @@
 
 #include "fem/reduced/cell_rod.hpp"
 #include "fem/reduced/spatial_cell_rod.hpp"
+#include "fem/scenes/tca_end_cell.hpp"
 #include "fem/scenes/tca_scene.hpp"
 
 namespace softarm::fem {
@@ -86,13 +87,18 @@ CellTable cell_table(const TcaCellResult& cell);
 /// caller (cell_torsion_stiffness).
 SpatialCellTable spatial_cell_table(const TcaCellResult& cell, double peak_kPa);
 
-/// The cell rod of spec's 3CA from its cells (cell_rod.hpp): length, caps, and the spec's
-/// gravity resolved along the pressures' bend direction and the axis (user frame).
-CellRodSpec tca_cell_rod(const TcaSceneSpec& spec, const std::vector<TcaCellResult>& cells);
+/// An end cell's output states as the cell rod's end table (cell_rod.hpp, EndTable).
+EndTable end_table(const TcaEndCellResult& end);
 
-/// Sets spec's mesh to the cells of the fidelity ladder's cell-rod rung (fidelity.cpp: Hex20/P1 at
-/// 27 points, level 1, level 4's layers), where its measured error holds.
-void use_cell_rod_rung_mesh(TcaSceneSpec& spec);
+/// The cell rod of spec's 3CA from its cells and end cells, if any (cell_rod.hpp): length, caps,
+/// ends, and the spec's gravity resolved along the pressures' bend direction and the axis (user
+/// frame).
+CellRodSpec tca_cell_rod(const TcaSceneSpec& spec, const std::vector<TcaCellResult>& cells,
+                         const std::vector<TcaEndCellResult>& ends = {});
+
+/// Sets spec's mesh and end cells to those of the fidelity ladder's cell-rod rung (fidelity.cpp:
+/// Hex20/P1 at 27 points, level 1, level 4's layers; its end rings), where its measured error holds.
+void use_cell_rod_rung(TcaSceneSpec& spec);
 
 /// The rings a cell rod takes its cells about: the first, middle and last (fewer when the 3CA has
 /// fewer; none without rings).
@@ -100,11 +106,13 @@ std::vector<int> cell_rod_rings(int ring_count);
 
 /// The 3CA scene on the cell rod: cells about the first, middle and last rings (fewer when
 /// the design has fewer), the rod evaluated at rest and at every output pressure. Loads in one
-/// plane (a mirror plane through the axis) take the planar rod (cell_rod.hpp), any others the
-/// spatial one (spatial_cell_rod.hpp) with the cells' torsion; the bending angle is then the tip
-/// axis' tilt from rest, signed by the pressures' bend direction.
+/// plane (a mirror plane through the axis) take the planar rod (cell_rod.hpp), with both ends
+/// as end cells through spec.cell_rod_end_rings rings where the 3CA has more than twice as many;
+/// any others the spatial one (spatial_cell_rod.hpp) with the cells' torsion and rigid caps; the
+/// bending angle is then the tip axis' tilt from rest, signed by the pressures' bend direction.
 struct CellRodTcaResult {
   std::vector<int> rings;
+  int end_rings = 0;                           // the end cells' (0: none, rigid caps)
   bool spatial = false;                        // the loads leave one plane: the spatial cell rod
   std::vector<CellRodState> curve;             // rest, then the outputs the rod reached
   std::optional<double> target_pressure_kPa;   // where the bending reaches spec.target_bending_deg
@@ -115,6 +123,7 @@ struct CellRodTcaResult {
   PathOutcome outcome = PathOutcome::completed;
   double reached_pressure_kPa = 0;
   int cell_dofs = 0;                           // of one cell
+  int end_cell_dofs = 0;                       // of one end cell (0: none)
   double cell_seconds = 0, rod_seconds = 0;
 };
 CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec);

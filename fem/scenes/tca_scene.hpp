@@ -47,6 +47,9 @@ struct TcaSceneSpec {
   bool allow_symmetry = true;                               // false: always the full model
   std::vector<double> output_pressures_kPa;                 // of the most pressurised chamber; last = its peak
   double target_bending_deg = 90;                           // report the pressure that reaches it
+  /// The cell rod (tca_cell.hpp) only: both ends through this many rings as 3D end cells
+  /// (tca_end_cell.hpp) in place of rigid caps on the cells' κ₀ and λ₀; 0: rigid caps.
+  int cell_rod_end_rings = 0;
   // 3D: no LU, factors reused, no iterating on an unstable branch, stiff parts rotated exactly (newton.hpp)
   NewtonSettings newton{.shift_indefinite_tangent = true, .reuse_factor = true, .max_indefinite_iterations = 4,
                         .rotate_stiff_parts = true};

@@ -1,0 +1,48 @@
+#include "fem/scenes/cell_supports.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace softarm::fem {
+
+double stiffest_silicone_shear_modulus(const Mesh& mesh, const std::vector<Material>& materials) {
+  double mu = 0;
+  for (std::size_t p = 0; p < materials.size(); ++p)
+    if (mesh.part_names[p] != "rings") mu = std::max(mu, materials[p].law->initial_shear_modulus());
+  return mu;
+}
+
+void hold_in_plane_rigid_motion(const Mesh& mesh, const std::vector<int>& face, bool half, DirichletConstraints& bc) {
+  std::vector<char> on_symmetry(mesh.num_nodes(), 0);
+  if (const auto it = mesh.node_sets.find("symmetry"); it != mesh.node_sets.end())
+    for (int n : it->second) on_symmetry[n] = 1;
+  int centre = -1, far = -1;
+  double best = std::numeric_limits<double>::infinity(), farthest = -1;
+  for (int n : face) {
+    const double r = mesh.X.row(n).head<2>().norm();
+    if ((!half || on_symmetry[n]) && r < best) best = r, centre = n;
+    if (r > farthest) farthest = r, far = n;
+  }
+  bc.fix(3 * centre);
+  if (!half) {
+    bc.fix(3 * centre + 1);
+    const bool along_x = std::abs(mesh.X(far, 0)) < std::abs(mesh.X(far, 1));
+    bc.fix(3 * far + (along_x ? 0 : 1));
+  }
+}
+
+PressurePathSpec cell_pressure_path(const TcaSceneSpec& spec, const ChamberLoads& chambers, bool dead_loads_first) {
+  PressurePathSpec path;
+  path.pressure_fractions = chambers.fractions;
+  path.gravity_preload = dead_loads_first;
+  path.max_pressure_kPa = chambers.peak_kPa;
+  path.output_pressures_kPa = spec.output_pressures_kPa;
+  path.newton = spec.newton;
+  path.steps = spec.steps;
+  path.limit = spec.limit;
+  path.node_dimension = 0;
+  return path;
+}
+
+}  // namespace softarm::fem

@@ -1,0 +1,71 @@
+// The 3CA's end cells (fem/scenes/tca_end_cell.hpp) against the whole 3D model: a short
+// untapered 3CA of seven rings, whose ends are most of its length, bends under two chambers
+// as its 3D model does once the cell rod takes its ends from end cells (within 2 % through
+// three rings, closer than through two); with rigid caps on the cells' response it bends 20 %
+// too far.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "fem/core/json_reader.hpp"
+#include "fem/scenes/scene_config.hpp"
+#include "fem/scenes/tca_cell.hpp"
+
+using namespace softarm::fem;
+using nlohmann::json;
+
+namespace {
+/// The thesis 3CA's distal section (r = 9 mm, no taper) over seven ring pitches (37.3 mm), chambers 2
+/// and 3 to 150 kPa, no gravity; Hex20/P1 at 27 points, level 1, level 2's layers (22,602 dofs half).
+TcaSceneSpec short_3ca() {
+  json j = load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/convergence/tca_thesis_hex20r.json");
+  j.erase("description");
+  j["geometry"]["length_mm"] = 7 * 160.0 / 30;
+  j["geometry"]["top_radius_mm"] = 9;
+  j["geometry"].erase("ring_count_normalised");
+  j["geometry"]["ring_count"] = 7;
+  j["mesh"] = {{"level", 1}, {"axial_level", 2}, {"element_order", 2}, {"serendipity", true}, {"reduced_integration", false}};
+  j["load"] = {{"chamber_pressures_kPa", {0, 150, 150}}, {"gravity_m_s2", {0, 0, 0}}, {"output_count", 3}};
+  return read_scene_config(j).tca;
+}
+}  // namespace
+
+TEST_CASE("End cells bend a short 3CA as its 3D model does, closer with each ring; rigid caps do not", "[cell]") {
+  // Measured: 3D 2.713°, 5.728°, 8.768° at 50, 100, 150 kPa; end cells through three rings +1.4 to
+  // +1.5 %, through two +3.7 to +3.8 %, rigid caps +20 %: the ends' disturbance decays by about half
+  // per ring pitch beyond the cut.
+  TcaSceneSpec spec = short_3ca();
+  const TcaResult solid = run_tca_scene(spec);
+  REQUIRE(solid.path.outcome == PathOutcome::completed);
+  std::vector<CellRodTcaResult> rods;
+  for (int rings : {3, 2, 0}) {
+    spec.cell_rod_end_rings = rings;
+    rods.push_back(run_cell_rod_tca(spec));
+    REQUIRE(rods.back().converged);
+    CHECK(rods.back().end_rings == rings);
+    REQUIRE(rods.back().curve.size() == solid.curve.size());
+  }
+  for (std::size_t i = 1; i < solid.curve.size(); ++i) {
+    const double reference = solid.curve[i].bending_angle_deg;
+    const auto error = [&](int k) { return rods[k].curve[i].bending_angle_deg / reference - 1; };
+    INFO(solid.curve[i].pressure_kPa << " kPa: 3D " << reference << "°; end cells through 3 rings " << 100 * error(0)
+                                     << " %, through 2 " << 100 * error(1) << " %, rigid caps " << 100 * error(2) << " %");
+    CHECK(rods[0].curve[i].pressure_kPa == Approx(solid.curve[i].pressure_kPa));
+    CHECK(std::abs(error(0)) < 0.02);
+    CHECK(std::abs(error(0)) < std::abs(error(1)));
+    CHECK(std::abs(error(1)) < 0.5 * std::abs(error(2)));
+    CHECK(error(2) > 0.1);
+  }
+}
+
+TEST_CASE("An end cell: unloaded it stays at rest; too many rings for the 3CA are refused", "[cell]") {
+  TcaSceneSpec spec = short_3ca();
+  spec.chamber_pressure_kPa = {0, 0, 0};
+  const TcaEndCellResult rest = run_tca_end_cell(spec, TcaEnd::bottom, 2);
+  REQUIRE(rest.states.size() == 1);
+  CHECK(rest.states.front().rotation_rad == 0);
+  CHECK(rest.states.front().elongation_mm == Approx(0).margin(1e-12));
+  CHECK(rest.length_mm == Approx(2 * 160.0 / 30));
+  CHECK_THROWS_AS(run_tca_end_cell(spec, TcaEnd::top, 4), std::logic_error);  // 2·4 ≥ 7 rings
+}
