@@ -1,5 +1,6 @@
 #include "fem/reduced/cell_rod.hpp"
 
+#include "fem/core/number_text.hpp"
 #include "fem/reduced/cell_interpolation.hpp"
 
 #include <Eigen/Core>
@@ -25,8 +26,8 @@ CellRodState solve_cell_rod(const CellRodSpec& spec, double pressure_kPa) {
     const auto k = along_ramp(c.pressure_kPa, c.curvature_per_mm, pressure_kPa);
     const auto m = along_ramp(c.pressure_kPa, c.bending_compliance_per_Nmm2, pressure_kPa);
     if (!l || !k || !m) {
-      out.diagnosis = "the cell at z = " + std::to_string(c.z_mm) + " mm reached " +
-                      std::to_string(c.pressure_kPa.empty() ? 0.0 : c.pressure_kPa.back()) + " kPa only";
+      out.diagnosis = "the cell at z = " + number_text(c.z_mm) + " mm reached " +
+                      number_text(c.pressure_kPa.empty() ? 0.0 : c.pressure_kPa.back()) + " kPa only";
       return out;
     }
     z.push_back(c.z_mm), stretch.push_back(*l), curvature.push_back(*k), compliance.push_back(*m);
@@ -43,7 +44,7 @@ CellRodState solve_cell_rod(const CellRodSpec& spec, double pressure_kPa) {
     const auto longer = along_ramp(e.pressure_kPa, e.elongation_mm, pressure_kPa);
     if (!turn || !longer) {
       out.diagnosis = std::string("the ") + (e.at_clamp ? "clamped" : "free") + " end reached " +
-                      std::to_string(e.pressure_kPa.empty() ? 0.0 : e.pressure_kPa.back()) + " kPa only";
+                      number_text(e.pressure_kPa.empty() ? 0.0 : e.pressure_kPa.back()) + " kPa only";
       return out;
     }
     const double z0 = e.at_clamp ? spec.length_mm - e.length_mm : 0.0;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "fem/core/number_text.hpp"
 #include "fem/reduced/cell_interpolation.hpp"
 #include "fem/reduced/rotation_vector.hpp"
 
@@ -63,8 +64,8 @@ std::string sections_at(const SpatialCellRodSpec& spec, double t, std::vector<In
       const auto b = along_ramp(c.level, c.bending_compliance_per_Nmm2, t);
       const auto a = along_ramp(c.level, c.axial_compliance_per_N, t);
       if (!l || !k || !b || !a)
-        return "the cell at z = " + std::to_string(c.z_mm) + " mm reached " +
-               std::to_string(c.level.empty() ? 0.0 : c.level.back()) + " of its pressures only";
+        return "the cell at z = " + number_text(c.z_mm) + " mm reached " +
+               number_text(c.level.empty() ? 0.0 : c.level.back()) + " of its pressures only";
       z.push_back(c.z_mm), stretch.push_back(*l), curvature.push_back(*k), bending.push_back(*b);
       axial.push_back(*a), torsion.push_back(c.torsion_compliance_per_Nmm2);
     }

@@ -41,13 +41,17 @@ FidelityLadder rra_ladder() {
 // and the 90° pressure:
 // - the rod: 21.0 % (37.40° against 47.36° at 150 kPa), +6.9 % at 90° (297.2 kPa); on the main job's
 //   optimised designs it is 22-48 % off (README, "Where the rod's error comes from");
-// - the cell rod (fem/reduced/cell_rod.hpp) on cells about rings 1, 15 and 30, each Hex20/P1 at 27
-//   points with level 4's layers (8,943 dofs, ~17 s each to 300 kPa, both threads, idle; 35 s for the
-//   three side by side, one thread each, to 344.7 kPa on configs/tca_thesis.json): +3.0 % at
-//   60 kPa (16.25° against 15.78°), +2.4 % at 90 kPa, within 1.9 % from 120 kPa on (−1.2 % at 300 kPa);
-//   90° at 280.6 kPa (+0.9 %); its sag under its weight −3.43° against −3.36°. Without gravity against
-//   the same mesh run weightless: +2.6 % at 60 kPa to −0.8 % at 300 kPa. `bench_tca_cell
-//   configs/convergence/tca_thesis_300kPa.json --axial-level 4 --compare <reference curve.csv>`;
+// - the cell rod (fem/reduced/cell_rod.hpp) on cells about rings 1, 15 and 30 and both ends through
+//   2 rings as end cells (fem/scenes/tca_end_cell.hpp), each Hex20/P1 at 27 points with level 4's
+//   layers (cells 8,943 dofs, ends 15,444; 34 s for the five side by side, one thread each, to 300 kPa,
+//   idle): +0.88 % at 60 kPa (15.91° against 15.78°), +1.18 % at 150 kPa, +1.40 % at 300 kPa; 90° at
+//   274.2 kPa (−1.3 %); its sag under its weight −3.43° against −3.36° (the ends carry no weight of
+//   their own). Without gravity against the same mesh run weightless: +0.9 % at 30 kPa to +1.4 % at
+//   300 kPa; through 3 rings +0.5 % to +1.0 % (the ends' disturbance halves per ring pitch), through
+//   1 ring +2.2 %, with rigid caps instead (the rung before this version) +4.0 % to +4.3 % (with
+//   gravity +4.7 % at 60 kPa). On configs/tca_thesis.json the free end balloons at 314.1 kPa, where the
+//   3D model does (314 kPa); the cells alone reach 344.7 kPa. `bench_tca_cell
+//   configs/convergence/tca_thesis_300kPa.json --end-rings 2 --compare <reference curve.csv>`;
 // - Hex20/P1 at 2×2×2 points, level 1: +0.85 % at 60 kPa, within 0.6 % above it; 90° at 278.77 kPa
 //   (+0.3 %). A cancellation: across the section the 2×2×2 rule is stiff, along the axis soft, and the
 //   two level-1 errors nearly cancel (32 mm cut, README "One direction at a time"); 202 s to the
@@ -64,8 +68,8 @@ FidelityLadder tca_ladder() {
           {{"reduced rod, 17 nodes", true, 0, 0, 21.0,
             "bending angle along the curve (worst point; 90° pressure: 6.9 %); on other designs up to 48 % (README)", 0.05,
             51},
-           {"cell rod: 3 ring-pitch cells (3D, level 4 layers)", true, 1, 2, 3.0,
-            "bending along the curve (90° pressure: 0.9 %)", 35, 8943, true, false, 4, true},
+           {"cell rod: 3 ring-pitch cells and both ends through 2 rings (3D, level 4 layers)", true, 1, 2, 1.4,
+            "bending along the curve (90° pressure: 1.3 %)", 34, 15444, true, false, 4, true, 2},
            {"3D Hex20/P1 at 2x2x2 Gauss points, level 1", false, 1, 2, 0.85,
             "bending along the curve (90° pressure: 0.3 %)", 202, 43992, true, true},
            {"3D Hex20/P1, level 1, layers of level 4", false, 1, 2, 0, "reference", 429, 173574, true, false, 4}}};
@@ -86,17 +90,20 @@ FidelityLadder tca_ladder() {
 //   the reference before this version): 10.3 mm, 2.2 %; joints 5.1 mm off on average.
 // - The cell rod on ring-pitch cells (fem/scenes/spl_cell_rod.hpp: 9 cells, Hex20/P1 at 27 points,
 //   level 1, level 4's layers; half models where a segment's pressures allow, 8,943 dofs, else full,
-//   16,593 dofs; each cell's GJ from the same cell with periodic faces at rest; 112 s, the cells side by
-//   side on one thread each (170-185 s one after another on both threads), the rod 25 ms for six poses; configs/spl_thesis_pose.json's default since this version):
-//   tip 20.2 mm, 4.2 %; joints 9.5 mm off on average; each segment's own bend 65.82°, 84.77°, 18.11°
-//   against 67.79°, 86.08°, 20.03°. Measured on the way there (bench_spl_cell_rod --compare <reference
-//   summary.json> [--full] [--torsion-scales ...]):
+//   16,593 dofs; each cell's GJ from the same cell with periodic faces at rest; rigid caps, no end cells
+//   yet; 102 s, the cells side by side on one thread each, the rod 25 ms for six poses;
+//   configs/spl_thesis_pose.json's default): tip 20.1 mm, 4.2 %; joints 7.9 mm off on average; each
+//   segment's own bend 68.42°, 88.60°, 18.46° against 67.79°, 86.08°, 20.03° (with the chord lids before
+//   the closed ones, chamber_pressure_form.cpp: tip 20.2 mm, joints 9.5 mm, bends 65.82°, 84.77°, 18.11°).
+//   Measured on the way there (bench_spl_cell_rod --compare <reference summary.json> [--full]
+//   [--torsion-scales ...]):
 //   - GJ from the fibre section's polar moment (at mid-height, rings left out) instead of the cells':
-//     38.1 mm, 8.0 %; that GJ halved or doubled: 176 or 76 mm. Torsion carries the pose: the segments
-//     bend about their own axes and the weight beyond each twists it.
-//   - Full-model cells everywhere (362 s), whose out-of-plane bending compliance under pressure is up
-//     to twice the in-plane one (the half model takes the in-plane value for both): 42.9 mm, 9.0 %.
-//     Which of the two is nearer the converged pose is open (the reference is 17-40 mm from it).
+//     38.1 mm, 8.0 %; that GJ halved or doubled: 176 or 76 mm (chord lids). Torsion carries the pose:
+//     the segments bend about their own axes and the weight beyond each twists it.
+//   - Full-model cells everywhere (196 s), whose out-of-plane bending compliance under pressure is up
+//     to twice the in-plane one (the half model takes the in-plane value for both): 40.5 mm, 8.5 %
+//     (42.9 mm with the chord lids). Which of the two is nearer the converged pose is open (the
+//     reference is 17-40 mm from it).
 // - The spatial rod (0.9-1.1 s, bench_reduced_model; 57 nodes x 4 unknowns): 211 mm, 44 %; joints
 //   120 mm off on average; in one plane it poses the thesis 3CA within 0.3 % of the planar rod
 //   (test_spatial_rod).
@@ -116,7 +123,7 @@ FidelityLadder spl_ladder() {
             228},
            {"3D Hex8/P0, level 1 (preview: locks in bending)", false, 1, 1, 68, "3CA bending at 344.7 kPa", 48, 66132},
            {"cell rod: 3 ring-pitch cells per segment (3D, level 4 layers)", true, 1, 2, 4.2,
-            tip + " (joints 9.5 mm off on average; with full-model cells 9.0 %)", 112, 16593, true, false, 4, true},
+            tip + " (joints 7.9 mm off on average; with full-model cells 8.5 %)", 102, 16593, true, false, 4, true},
            {"3D Hex20/P1, level 1, layers of level 2", false, 1, 2, 2.2, tip + " (joints 5.1 mm off on average)", 2845,
             510318, true, false, 2},
            {"3D Hex20/P1, level 1, layers of level 3", false, 1, 2, 0, "reference", 5785, 764472, true, false, 3}}};
