@@ -7,9 +7,9 @@
 #include <memory>
 
 #include "fem/core/parallel.hpp"
-#include "fem/scenes/cell_supports.hpp"
 #include "fem/forms/periodic_face_form.hpp"
 #include "fem/forms/plane_face_form.hpp"
+#include "fem/scenes/cell_supports.hpp"
 #include "fem/scenes/fidelity.hpp"
 #include "fem/mesh/tca_mesher.hpp"
 #include "fem/solver/linear_solver.hpp"
@@ -256,8 +256,9 @@ EndTable end_table(const TcaEndCellResult& end) {
   EndTable t;
   t.at_clamp = end.end == TcaEnd::top;
   t.length_mm = end.length_mm;
+  // Up the ramp only: past a limit point volume control may report states at falling pressure.
   for (const TcaEndState& s : end.states)
-    if (s.is_output) {
+    if (s.is_output && (t.pressure_kPa.empty() || s.pressure_kPa > t.pressure_kPa.back())) {
       t.pressure_kPa.push_back(s.pressure_kPa);
       t.rotation_rad.push_back(s.rotation_rad);
       t.elongation_mm.push_back(s.elongation_mm);
