@@ -21,9 +21,9 @@
 // 3D path's bending at every output beside the rod's at the same pressure, so
 // the error can be followed along the curve, not only at its end.
 //
-// --cell-rod bends each distal segment by the cell rod (fem/reduced/cell_rod.hpp; cells
-// about its first, middle and last rings, Hex20/P1 at 27 points with level 4's layers, as the
-// fidelity ladder's rung) along 8 steps to the recorded 3D pressure (about a minute per design).
+// --cell-rod bends each distal segment by the cell rod (fem/reduced/cell_rod.hpp; cells and end
+// cells as the fidelity ladder's rung: Hex20/P1 at 27 points with level 4's layers; its path at every
+// output with --design N) along 8 steps to the recorded 3D pressure (about a minute per design).
 //
 // --cell-rod --reference also runs the whole segment on the fidelity ladder's reference mesh
 // (Hex20/P1 at 27 points, level 1 with level 4's layers; ~10 minutes per design) to the same
@@ -126,6 +126,7 @@ fem::TcaSceneSpec reference_mesh_scene(const objectives::ArmCandidate& c, double
   spec.integration = fem::ElementIntegration::full;
   spec.mesh_level = 1;
   spec.axial_level = 4;
+  fem::use_cell_rod_rung(spec);  // the same mesh, and the rung's end cells for the cell rod
   spec.chamber_pressure_kPa = {0.0, p_kPa, p_kPa};
   spec.output_pressures_kPa.clear();
   for (int k = 1; k <= 8; ++k) spec.output_pressures_kPa.push_back(p_kPa * k / 8);
@@ -171,6 +172,9 @@ int main(int argc, char** argv) {
       std::printf("%-38s %8.1f %10.2f %12.2f %10.1f %+7.1f%% %10.1f\n", d.name, d.pressure_kPa, rod, bend,
                   d.recorded_3d_deg, 100 * (bend / d.recorded_3d_deg - 1), r.cell_seconds);
       std::fflush(stdout);
+      if (only != 0)  // one design: its whole path, to set beside a --reference run's
+        for (const auto& state : r.curve)
+          std::printf("  cell rod %7.1f kPa %8.2f deg\n", state.pressure_kPa, state.bending_angle_deg);
       if (!reference) continue;
       const fem::TcaResult full = fem::run_tca_scene(spec);
       for (std::size_t k = 0; k < full.curve.size(); ++k) {

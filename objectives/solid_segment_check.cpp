@@ -94,7 +94,9 @@ SolidSegmentCheck check_on_cell_rod(fem::TcaSceneSpec spec, int segment, const S
     for (const auto& state : r.curve) progress(state.pressure_kPa, state.bending_angle_deg);
   SolidSegmentCheck out;
   out.segment = segment;
-  out.element = "cell rod on ring-pitch cells, H2s/P1 at 27 points, level 1, layers of level 4";
+  out.element = "cell rod on ring-pitch cells" +
+                (r.end_rings > 0 ? " and both ends through " + std::to_string(r.end_rings) + " rings" : std::string()) +
+                ", H2s/P1 at 27 points, level 1, layers of level 4";
   out.dofs = r.cell_dofs;
   out.reached_pressure_kPa = r.reached_pressure_kPa;
   out.path = r.outcome;
