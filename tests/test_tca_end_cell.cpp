@@ -31,7 +31,7 @@ TcaSceneSpec short_3ca() {
 }
 }  // namespace
 
-TEST_CASE("End cells bend a short 3CA as its 3D model does, closer with each ring; rigid caps do not", "[cell]") {
+TEST_CASE("End cells bend a short 3CA as its 3D model does, closer with each ring, where rigid caps do not", "[cell]") {
   // Measured: 3D 2.713°, 5.728°, 8.768° at 50, 100, 150 kPa; end cells through three rings +1.4 to
   // +1.5 %, through two +3.7 to +3.8 %, rigid caps +20 %: the ends' disturbance decays by about half
   // per ring pitch beyond the cut.
@@ -59,7 +59,7 @@ TEST_CASE("End cells bend a short 3CA as its 3D model does, closer with each rin
   }
 }
 
-TEST_CASE("An end cell: unloaded it stays at rest; too many rings for the 3CA are refused", "[cell]") {
+TEST_CASE("An end cell: unloaded it stays at rest, and too many rings for the 3CA are refused", "[cell]") {
   TcaSceneSpec spec = short_3ca();
   spec.chamber_pressure_kPa = {0, 0, 0};
   const TcaEndCellResult rest = run_tca_end_cell(spec, TcaEnd::bottom, 2);
