@@ -50,7 +50,7 @@ FidelityLadder rra_ladder() {
 //   300 kPa; through 3 rings +0.5 % to +1.0 % (the ends' disturbance halves per ring pitch), through
 //   1 ring +2.2 %, with rigid caps instead (the rung before this version) +4.0 % to +4.3 % (with
 //   gravity +4.7 % at 60 kPa). On configs/tca_thesis.json the free end balloons at 314.1 kPa, where the
-//   3D model does (314 kPa); the cells alone reach 344.7 kPa. `bench_tca_cell
+//   3D meshes do (309-316 kPa; 314.4 kPa with level 2's layers); the cells alone reach 344.7 kPa. `bench_tca_cell
 //   configs/convergence/tca_thesis_300kPa.json --end-rings 2 --compare <reference curve.csv>`;
 // - Hex20/P1 at 2×2×2 points, level 1: +0.85 % at 60 kPa, within 0.6 % above it; 90° at 278.77 kPa
 //   (+0.3 %). A cancellation: across the section the 2×2×2 rule is stiff, along the axis soft, and the
