@@ -74,6 +74,7 @@ int simulate_cell_rod_tca(const fem::SceneConfig& config) {
     std::cout << "; both ends through " << r.end_rings << " rings, " << r.end_cell_dofs << " dofs each";
   std::cout << ", " << std::setprecision(3) << r.cell_seconds << " s), the rod " << r.rod_seconds << " s\n";
   if (r.spatial) std::cout << "(the loads leave one plane: the spatial cell rod, with the cells' torsion)\n";
+  if (!r.end_cells_note.empty()) std::cout << "(" << r.end_cells_note << ")\n";
   std::ofstream csv = open_output_file(dir, "curve.csv");
   csv << "pressure_kPa,bending_angle_deg,tip_along_bend_mm,tip_z_mm\n";
   std::cout << std::setw(14) << "pressure_kPa" << std::setw(14) << "bending_deg" << std::setw(18) << "tip_along_bend_mm"
@@ -99,7 +100,8 @@ int simulate_cell_rod_tca(const fem::SceneConfig& config) {
                   {{"scene", "tca"}, {"model", model_json(config)}, {"curve", curve},
                    {"target_pressure_kPa", r.target_pressure_kPa ? nlohmann::json(*r.target_pressure_kPa) : nlohmann::json()},
                    {"cell_rings", r.rings}, {"cell_dofs", r.cell_dofs},
-                   {"end_cell_rings", r.end_rings}, {"end_cell_dofs", r.end_cell_dofs}, {"rod", r.spatial ? "spatial" : "planar"},
+                   {"end_cell_rings", r.end_rings}, {"end_cell_dofs", r.end_cell_dofs},
+                   {"end_cells_note", r.end_cells_note}, {"rod", r.spatial ? "spatial" : "planar"},
                    {"outcome", fem::to_string(r.outcome)}, {"reached_pressure_kPa", r.reached_pressure_kPa},
                    {"diagnosis", r.diagnosis}, {"cell_seconds", r.cell_seconds}, {"rod_seconds", r.rod_seconds}});
   std::cout << "written: " << dir << "/curve.csv, " << dir << "/summary.json\n";

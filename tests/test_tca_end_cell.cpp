@@ -44,6 +44,7 @@ TEST_CASE("End cells bend a short 3CA as its 3D model does, closer with each rin
     rods.push_back(run_cell_rod_tca(spec));
     REQUIRE(rods.back().converged);
     CHECK(rods.back().end_rings == rings);
+    CHECK(rods.back().end_cells_note.empty());
     REQUIRE(rods.back().curve.size() == solid.curve.size());
   }
   for (std::size_t i = 1; i < solid.curve.size(); ++i) {
@@ -68,4 +69,9 @@ TEST_CASE("An end cell: unloaded it stays at rest, and too many rings for the 3C
   CHECK(rest.states.front().elongation_mm == Approx(0).margin(1e-12));
   CHECK(rest.length_mm == Approx(2 * 160.0 / 30));
   CHECK_THROWS_AS(run_tca_end_cell(spec, TcaEnd::top, 4), std::logic_error);  // 2·4 ≥ 7 rings
+  // The cell rod asked for such ends takes rigid caps and says why.
+  spec.cell_rod_end_rings = 4;
+  const CellRodTcaResult rod = run_cell_rod_tca(spec);
+  CHECK(rod.end_rings == 0);
+  CHECK(rod.end_cells_note.find("7 rings") != std::string::npos);
 }

@@ -346,6 +346,11 @@ CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
   if (bend.norm() > 0) bend.normalize();
   out.rings = cell_rod_rings(n);
   out.end_rings = !out.spatial && 2 * spec.cell_rod_end_rings < n ? spec.cell_rod_end_rings : 0;
+  if (spec.cell_rod_end_rings > 0 && out.end_rings == 0)
+    out.end_cells_note = out.spatial ? "no end cells: the loads leave one plane, and the spatial cell rod has rigid caps"
+                                     : "no end cells: " + std::to_string(n) + " rings, and ends through " +
+                                           std::to_string(spec.cell_rod_end_rings) + " rings need more than " +
+                                           std::to_string(2 * spec.cell_rod_end_rings) + "; rigid caps";
   const int end_count = out.end_rings > 0 ? 2 : 0;
   std::vector<TcaCellResult> cells(out.rings.size());
   std::vector<TcaEndCellResult> ends(end_count);

@@ -113,6 +113,7 @@ std::vector<int> cell_rod_rings(int ring_count);
 struct CellRodTcaResult {
   std::vector<int> rings;
   int end_rings = 0;                           // the end cells' (0: none, rigid caps)
+  std::string end_cells_note;                  // why none where spec.cell_rod_end_rings asked for them
   bool spatial = false;                        // the loads leave one plane: the spatial cell rod
   std::vector<CellRodState> curve;             // rest, then the outputs the rod reached
   std::optional<double> target_pressure_kPa;   // where the bending reaches spec.target_bending_deg
