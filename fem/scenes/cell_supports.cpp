@@ -32,17 +32,4 @@ void hold_in_plane_rigid_motion(const Mesh& mesh, const std::vector<int>& face, 
   }
 }
 
-PressurePathSpec cell_pressure_path(const TcaSceneSpec& spec, const ChamberLoads& chambers, bool dead_loads_first) {
-  PressurePathSpec path;
-  path.pressure_fractions = chambers.fractions;
-  path.gravity_preload = dead_loads_first;
-  path.max_pressure_kPa = chambers.peak_kPa;
-  path.output_pressures_kPa = spec.output_pressures_kPa;
-  path.newton = spec.newton;
-  path.steps = spec.steps;
-  path.limit = spec.limit;
-  path.node_dimension = 0;
-  return path;
-}
-
 }  // namespace softarm::fem

@@ -1,15 +1,11 @@
 #pragma once
 // What the 3CA's cells (tca_cell.hpp, tca_end_cell.hpp) share: the scale of their
-// faces' penalties, the supports that hold a face's in-plane rigid motion, and their
-// pressure ramp.
+// faces' penalties and the supports that hold a face's in-plane rigid motion.
 #include <vector>
 
 #include "fem/assembly/energy_problem.hpp"
 #include "fem/materials/material.hpp"
 #include "fem/mesh/mesh.hpp"
-#include "fem/scenes/pressure_path.hpp"
-#include "fem/scenes/solid_scene_support.hpp"
-#include "fem/scenes/tca_scene.hpp"
 
 namespace softarm::fem {
 
@@ -26,10 +22,5 @@ double stiffest_silicone_shear_modulus(const Mesh& mesh, const std::vector<Mater
 /// axis holds its tangential direction too (rotation about z). The supports carry no force at
 /// equilibrium.
 void hold_in_plane_rigid_motion(const Mesh& mesh, const std::vector<int>& face, bool half, DirichletConstraints& bc);
-
-/// A cell's pressure ramp: `chambers` to their peaks with the spec's outputs and solver settings;
-/// `dead_loads_first` applies the dead loads (LoadState::gravity_scale) before it. The cells' face
-/// pilots are not mesh nodes, so an unstable mode's location is left out of a diagnosis.
-PressurePathSpec cell_pressure_path(const TcaSceneSpec& spec, const ChamberLoads& chambers, bool dead_loads_first);
 
 }  // namespace softarm::fem

@@ -159,7 +159,7 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
     out.states.back().is_output = true;
     if (out.path.path.completed) add_compliance(out.states.back(), x);
   } else {
-    const PressurePathSpec path = cell_pressure_path(spec, chambers, end_loaded);
+    const PressurePathSpec path = tca_pressure_path(spec, chambers, end_loaded, 0);
     out.path = run_pressure_path(problem, chambers.loaded, load, x, path, [&](const PressureState& s, const Vector& xs) {
       out.states.push_back(state_of(s.pressure_kPa, s.chamber_volume_mm3, xs));
       out.states.back().newton_iterations = s.newton_iterations;

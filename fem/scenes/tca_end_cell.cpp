@@ -101,7 +101,7 @@ TcaEndCellResult run_tca_end_cell(const TcaSceneSpec& spec, TcaEnd end, int ring
     out.path.diagnosis = out.path.path.message;
   } else {
     out.states.clear();
-    out.path = run_pressure_path(problem, chambers.loaded, load, x, cell_pressure_path(spec, chambers, false), [&](const PressureState& p, const Vector& xs) {
+    out.path = run_pressure_path(problem, chambers.loaded, load, x, tca_pressure_path(spec, chambers, false, 0), [&](const PressureState& p, const Vector& xs) {
       out.states.push_back(state_of(p.pressure_kPa, xs));
       out.states.back().newton_iterations = p.newton_iterations;
       out.states.back().is_output = p.is_output;

@@ -63,6 +63,20 @@ Eigen::Vector3d tca_solver_gravity(const TcaSceneSpec& spec, const ModelChoice& 
   return rotation_about_z(-model.frame_angle_rad) * spec.gravity_m_s2;
 }
 
+PressurePathSpec tca_pressure_path(const TcaSceneSpec& spec, const ChamberLoads& chambers, bool dead_loads_first,
+                                   int node_dimension) {
+  PressurePathSpec path;
+  path.pressure_fractions = chambers.fractions;
+  path.gravity_preload = dead_loads_first;
+  path.max_pressure_kPa = chambers.peak_kPa;
+  path.output_pressures_kPa = spec.output_pressures_kPa;
+  path.newton = spec.newton;
+  path.steps = spec.steps;
+  path.limit = spec.limit;
+  path.node_dimension = node_dimension;
+  return path;
+}
+
 TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
   const auto t_start = Clock::now();
   TcaResult out;
@@ -81,14 +95,11 @@ TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
   EnergyProblem problem(flattened_positions(mesh), clamped_with_symmetry(mesh, "top"));
   problem.add_form(elastic);
   if (spec.newton.rotate_stiff_parts) problem.set_stiff_inclusions(stiff_parts(mesh, materials));
-  PressurePathSpec path;
   const ChamberLoads chambers = add_chamber_loads(
       mesh, {spec.chamber_pressure_kPa.begin(), spec.chamber_pressure_kPa.end()}, load, problem);
-  path.pressure_fractions = chambers.fractions;
-  if (spec.gravity_m_s2.norm() > 0) {
+  const bool weighs = spec.gravity_m_s2.norm() > 0;
+  if (weighs)
     problem.add_form(std::make_shared<GravityForm>(mesh, materials, tca_solver_gravity(spec, out.model), load));
-    path.gravity_preload = true;
-  }
   problem.finalize();
   out.dofs = problem.num_dofs();
   const double copies = out.model.half ? 2.0 : 1.0;
@@ -125,12 +136,7 @@ TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
     return t;
   };
 
-  path.max_pressure_kPa = chambers.peak_kPa;
-  path.output_pressures_kPa = spec.output_pressures_kPa;
-  path.newton = spec.newton;
-  path.steps = spec.steps;
-  path.limit = spec.limit;
-  path.node_dimension = 3;
+  const PressurePathSpec path = tca_pressure_path(spec, chambers, weighs, 3);
   Vector x = problem.reference_positions();
   const auto t_solve = Clock::now();
   out.path = run_pressure_path(problem, chambers.loaded, load, x, path, [&](const PressureState& s, const Vector& xs) {

@@ -107,6 +107,13 @@ Eigen::Vector3d tca_bend_direction(const std::array<double, 3>& chamber_pressure
 /// Gravity in the solver frame of `model`.
 Eigen::Vector3d tca_solver_gravity(const TcaSceneSpec& spec, const ModelChoice& model);
 
+/// The pressure ramp of a 3CA model (the whole 3CA, a ring-pitch cell, an end cell): `chambers` to
+/// their peaks with the spec's outputs and solver settings; `dead_loads_first` applies gravity or a
+/// cell's end loads (LoadState::gravity_scale) before it; `node_dimension` 3 for the mesh's nodes, 0
+/// where the unknowns include a face pilot that is not one (the cells).
+PressurePathSpec tca_pressure_path(const TcaSceneSpec& spec, const ChamberLoads& chambers, bool dead_loads_first,
+                                   int node_dimension);
+
 TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress = {});
 
 /// The pressure at which the states' bending angle first reaches `angle_deg`
