@@ -3,10 +3,14 @@
 // fidelity ladder's reference: configs/convergence/spl_thesis_pose_axial3.json).
 //
 //   bench_spl_cell_rod [config] [--full] [--cell-levels N] [--threads N] [--compare summary.json]
-//                      [--torsion-scales 1,0.5,2] [--tables] [--save-cells F | --load-cells F]
+//                      [--torsion-scales 1,0.5,2] [--tables] [--save-cells F | --load-cells F] [--rigid-caps]
+//                      [--axial-level N] [--end-rings N]
 //   --full: full-model cells even where a segment's pressures allow a half model
 //   --save-cells F / --load-cells F: keep the cells' tables in a JSON file / pose from one (no cells run)
 //   --tables: print every cell's table (stretch, curvature vector, compliances) at its outputs
+//   --axial-level N / --end-rings N: the cells' layers as the 3D mesh's at level N / ends through N rings
+//     (0: none), instead of the 3CA ladder's cell-rod rung's
+//   --rigid-caps: pose without the end cells' tables (the cells' response up to rigid caps)
 //   --torsion-scales: pose again with each segment's GJ times each factor (the cells once)
 #include <chrono>
 #include <cmath>
@@ -42,7 +46,14 @@ nlohmann::json to_json(const fem::SpatialCellRodSpec& rod) {
                        {"bending_compliance_per_Nmm2", b}, {"torsion_compliance_per_Nmm2", c.torsion_compliance_per_Nmm2},
                        {"mass_per_length_kg_per_mm", c.mass_per_length_kg_per_mm}});
     }
-    pieces.push_back({{"length_mm", p.length_mm}, {"cap_mm", p.cap_mm}, {"mass_kg", p.mass_kg}, {"cells", cells}});
+    nlohmann::json ends = nlohmann::json::array();
+    for (const auto& e : p.ends) {
+      nlohmann::json turn = nlohmann::json::array();
+      for (const auto& v : e.rotation_rad) turn.push_back({v.x(), v.y()});
+      ends.push_back({{"at_top", e.at_top}, {"length_mm", e.length_mm}, {"level", e.level},
+                      {"rotation_rad", turn}, {"elongation_mm", e.elongation_mm}});
+    }
+    pieces.push_back({{"length_mm", p.length_mm}, {"cap_mm", p.cap_mm}, {"mass_kg", p.mass_kg}, {"cells", cells}, {"ends", ends}});
   }
   return {{"pieces", pieces}};
 }
@@ -70,6 +81,15 @@ void read_tables(const nlohmann::json& j, fem::SpatialCellRodSpec& rod) {
       }
       piece.cells.push_back(t);
     }
+    for (const auto& e : p.value("ends", nlohmann::json::array())) {
+      fem::SpatialEndTable t;
+      t.at_top = e.at("at_top");
+      t.length_mm = e.at("length_mm");
+      t.level = e.at("level").get<std::vector<double>>();
+      t.elongation_mm = e.at("elongation_mm").get<std::vector<double>>();
+      for (const auto& v : e.at("rotation_rad")) t.rotation_rad.emplace_back(v[0].get<double>(), v[1].get<double>());
+      piece.ends.push_back(t);
+    }
     rod.pieces.push_back(piece);
   }
 }
@@ -77,14 +97,17 @@ void read_tables(const nlohmann::json& j, fem::SpatialCellRodSpec& rod) {
 
 int main(int argc, char** argv) {
   std::string config = "configs/spl_thesis_pose.json", compare, save_cells, load_cells;
-  bool full = false, tables = false;
-  int cell_levels = 16;
+  bool full = false, tables = false, rigid_caps = false;
+  int cell_levels = 16, axial_level = 0, end_rings = -1;
   std::vector<double> torsion_scales;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--compare" && i + 1 < argc) compare = argv[++i];
     else if (a == "--full") full = true;
     else if (a == "--tables") tables = true;
+    else if (a == "--rigid-caps") rigid_caps = true;
+    else if (a == "--axial-level" && i + 1 < argc) axial_level = std::atoi(argv[++i]);
+    else if (a == "--end-rings" && i + 1 < argc) end_rings = std::atoi(argv[++i]);
     else if (a == "--save-cells" && i + 1 < argc) save_cells = argv[++i];
     else if (a == "--load-cells" && i + 1 < argc) load_cells = argv[++i];
     else if (a == "--torsion-scales" && i + 1 < argc) {
@@ -101,7 +124,10 @@ int main(int argc, char** argv) {
   if (full) spec.allow_symmetry = false;
   fem::SplCells cells;
   if (load_cells.empty()) {
-    cells = fem::spl_cells(spec, cell_levels);
+    cells = fem::spl_cells(spec, cell_levels, [&](fem::TcaSceneSpec& s) {
+      if (axial_level > 0) s.axial_level = axial_level;
+      if (end_rings >= 0) s.cell_rod_end_rings = end_rings;
+    });
   } else {
     cells.rod.gravity_m_s2 = spec.gravity_m_s2;
     cells.rod.tip_mass_kg = spec.tip_mass_kg;
@@ -116,8 +142,18 @@ int main(int argc, char** argv) {
         }
   }
   if (!save_cells.empty()) std::ofstream(save_cells) << to_json(cells.rod).dump(1);
-  std::printf("%s: %d cells (largest %d dofs), %.1f s, threads %d\n", config.c_str(), cells.cells,
-              cells.largest_cell_dofs, cells.seconds, fem::thread_count());
+  std::printf("%s: %d cells (largest %d dofs), %d end cells (largest %d dofs), %.1f s, threads %d\n", config.c_str(),
+              cells.cells, cells.largest_cell_dofs, cells.end_cells, cells.largest_end_cell_dofs, cells.seconds,
+              fem::thread_count());
+  if (!cells.end_cells_note.empty()) std::printf("(%s)\n", cells.end_cells_note.c_str());
+  for (std::size_t p = 0; p < cells.rod.pieces.size(); ++p)
+    for (const auto& e : cells.rod.pieces[p].ends)
+      if (!e.level.empty())
+        std::printf("segment %zu %s end, %.2f mm: at level %.3f turns (%.5f, %.5f) rad, elongates %.4f mm\n", p / 2 + 1,
+                    e.at_top ? "top" : "bottom", e.length_mm, e.level.back(), e.rotation_rad.back().x(),
+                    e.rotation_rad.back().y(), e.elongation_mm.back());
+  if (rigid_caps)
+    for (auto& p : cells.rod.pieces) p.ends.clear();
   for (int n = 0; n < 3; ++n) {
     std::printf("segment %d: %s model, rings", n + 1, cells.half_model[n] ? "half" : "full");
     for (int ring : cells.rings[n]) std::printf(" %d", ring);

@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
   constexpr double kDeg = 180 / 3.14159265358979;
   if (end_rings > 0)
     for (const fem::TcaEnd end : {fem::TcaEnd::bottom, fem::TcaEnd::top}) {
-      const auto e = fem::run_tca_end_cell(spec, end, end_rings);
+      const auto e = fem::run_tca_end_cell(spec, end, end_rings, fem::tca_scene_end_support(end));
       ends.push_back(e);
       cell_seconds += e.seconds;
       std::printf("\n%s end through %d rings (%.3f mm): %s, %d dofs, %d Newton, %.1f s; %s%s\n",

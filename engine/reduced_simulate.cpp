@@ -117,11 +117,17 @@ int simulate_cell_rod_spl(const fem::SceneConfig& config) {
   for (int n = 0; n < 3; ++n) {
     std::cout << "segment " << n + 1 << ": rings";
     for (int ring : c.rings[n]) std::cout << " " << ring;
-    std::cout << (c.half_model[n] ? ", half model" : ", full model") << "\n";
-    cells.push_back({{"segment", n + 1}, {"rings", c.rings[n]}, {"half_model", c.half_model[n]}});
+    std::cout << (c.half_model[n] ? ", half model" : ", full model");
+    if (c.end_rings[n] > 0)
+      std::cout << "; end cells through " << c.end_rings[n] << " rings (top bonded to its connector, bottom "
+                << (n < 2 ? "bonded to its connector)" : "free: the tip)");
+    std::cout << "\n";
+    cells.push_back({{"segment", n + 1}, {"rings", c.rings[n]}, {"half_model", c.half_model[n]}, {"end_rings", c.end_rings[n]}});
   }
-  std::cout << std::setprecision(3) << c.cells << " cells (up to " << c.largest_cell_dofs << " dofs) in " << c.seconds
-            << " s, the rod " << r.rod_seconds << " s\n";
+  if (!c.end_cells_note.empty()) std::cout << "(" << c.end_cells_note << ")\n";
+  std::cout << std::setprecision(3) << c.cells << " cells (up to " << c.largest_cell_dofs << " dofs) and " << c.end_cells
+            << " end cells (up to " << c.largest_end_cell_dofs << " dofs) in " << c.seconds << " s, the rod "
+            << r.rod_seconds << " s\n";
   SplCurveWriter writer(dir, std::cout, "fixed_point");
   for (const auto& s : r.curve) writer.add(s);
   std::cout << "\noutcome: " << (r.converged ? "completed" : "stopped — " + r.diagnosis) << "\n";
@@ -132,7 +138,9 @@ int simulate_cell_rod_spl(const fem::SceneConfig& config) {
                   {{"scene", "spl"}, {"model", model_json(config)}, {"outcome", fem::to_string(r.outcome)},
                    {"diagnosis", r.diagnosis}, {"reached_load_fraction", r.reached_level},
                    {"joints", joints_json(r.joints)}, {"mass_kg", r.mass_kg}, {"cells", cells},
-                   {"largest_cell_dofs", c.largest_cell_dofs}, {"cell_seconds", c.seconds},
+                   {"largest_cell_dofs", c.largest_cell_dofs}, {"end_cells", c.end_cells},
+                   {"largest_end_cell_dofs", c.largest_end_cell_dofs}, {"end_cells_note", c.end_cells_note},
+                   {"cell_seconds", c.seconds},
                    {"rod_seconds", r.rod_seconds}});
   std::cout << "written: " << dir << "/curve.csv, " << dir << "/summary.json\n";
   return r.converged ? 0 : 1;

@@ -1,7 +1,8 @@
 // The SPL on the spatial cell rod (fem/scenes/spl_cell_rod.hpp): with only its distal
 // segment pressurised and no gravity, the two upper segments stay straight and the distal one
-// bends exactly as the planar cell rod (tca_cell.hpp) bends the same 3CA from the same cells:
-// the segments' order, the chambers' numbering, the bend's direction and the joints' frames.
+// bends exactly as the planar cell rod (tca_cell.hpp) bends the same 3CA from the same cells and
+// end cells: the segments' order, the chambers' numbering, the bend's direction, the joints' frames
+// and the end tables' turn.
 #include <catch2/catch.hpp>
 #include <Eigen/Geometry>
 #include <cmath>
@@ -37,9 +38,13 @@ TEST_CASE("The SPL cell rod bends a lone distal segment as the 3CA cell rod does
   tca.steps = spl.steps;
   tca.limit = spl.limit;
   use_cell_rod_rung(tca);
-  tca.cell_rod_end_rings = 0;  // the SPL's segments have rigid caps on their cells (no end cells yet)
   const CellRodTcaResult planar = run_cell_rod_tca(tca);
   REQUIRE(planar.converged);
+  // Both take end cells: the SPL's distal segment bonded to its connector at the top and free at the
+  // tip, as the 3CA's clamped and free ends.
+  CHECK(planar.end_rings == 2);
+  CHECK(cells.end_rings[2] == 2);
+  CHECK(cells.end_cells == 6);
 
   // The upper segments and connectors hang straight: segment 3's top is where it was.
   const Eigen::Vector3d top = r.joints[4].pose.position_mm;

@@ -21,6 +21,12 @@ std::optional<T> along_ramp(const std::vector<double>& xs, const std::vector<T>&
   return v.back();
 }
 
+/// The share of the interval [at − width/2, at + width/2] inside [z0, z1]: how much of a rod's
+/// interval an end table covers.
+inline double overlap_share(double at, double width, double z0, double z1) {
+  return std::clamp((std::min(at + width / 2, z1) - std::max(at - width / 2, z0)) / width, 0.0, 1.0);
+}
+
 /// Lagrange's interpolating polynomial through (z_k, v_k) at `at`.
 template <class T>
 T lagrange(const std::vector<double>& z, const std::vector<T>& v, double at) {

@@ -60,7 +60,7 @@ CellRodState solve_cell_rod(const CellRodSpec& spec, double pressure_kPa) {
     k0[i] = cap ? 0.0 : lagrange(z, curvature, zi);
     l0[i] = cap ? 1.0 : lagrange(z, stretch, zi);
     for (const EndRate& e : ends) {  // the share of the interval inside an end takes the end's rates
-      const double share = std::clamp((std::min(zi + dS / 2, e.z1) - std::max(zi - dS / 2, e.z0)) / dS, 0.0, 1.0);
+      const double share = overlap_share(zi, dS, e.z0, e.z1);
       k0[i] = share * e.curvature + (1 - share) * k0[i];
       l0[i] = share * e.stretch + (1 - share) * l0[i];
     }

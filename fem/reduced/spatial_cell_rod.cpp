@@ -69,16 +69,38 @@ std::string sections_at(const SpatialCellRodSpec& spec, double t, std::vector<In
       z.push_back(c.z_mm), stretch.push_back(*l), curvature.push_back(*k), bending.push_back(*b);
       axial.push_back(*a), torsion.push_back(c.torsion_compliance_per_Nmm2);
     }
+    // The ends' own turn and stretch per unit length, over their lengths from z = 0 and z = length.
+    struct EndRate {
+      double z0, z1;
+      Eigen::Vector2d curvature;
+      double stretch;
+    };
+    std::vector<EndRate> ends;
+    for (const SpatialEndTable& e : piece.ends) {
+      const auto turn = along_ramp(e.level, e.rotation_rad, t);
+      const auto longer = along_ramp(e.level, e.elongation_mm, t);
+      if (!turn || !longer)
+        return std::string("the end cell at the segment's ") + (e.at_top ? "top" : "bottom") + " reached " +
+               number_text(e.level.empty() ? 0.0 : e.level.back()) + " of its pressures only";
+      const double z0 = e.at_top ? piece.length_mm - e.length_mm : 0.0;
+      ends.push_back({z0, z0 + e.length_mm, *turn / e.length_mm, 1 + *longer / e.length_mm});
+    }
     // From the piece's top (its z = length) down.
     for (int i = 0; i < n; ++i) {
       const double zi = piece.length_mm - (i + 0.5) * dz;
       const bool cap = zi < piece.cap_mm || zi > piece.length_mm - piece.cap_mm;
       IntervalSection s;
+      Eigen::Vector2d k = Eigen::Vector2d::Zero();
       if (!cap) {
-        const Eigen::Vector2d k = lagrange(z, curvature, zi);
-        s.free_curvature = Vec3(k.x(), k.y(), 0);
+        k = lagrange(z, curvature, zi);
         s.free_stretch = lagrange(z, stretch, zi);
       }
+      for (const EndRate& e : ends) {  // the share of the interval inside an end takes the end's rates
+        const double share = overlap_share(zi, dz, e.z0, e.z1);
+        k = share * e.curvature + (1 - share) * k;
+        s.free_stretch = share * e.stretch + (1 - share) * s.free_stretch;
+      }
+      s.free_curvature = Vec3(k.x(), k.y(), 0);
       s.bending = lagrange(z, bending, zi);
       s.axial = lagrange(z, axial, zi);
       s.torsion = lagrange(z, torsion, zi);

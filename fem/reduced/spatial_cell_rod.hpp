@@ -17,8 +17,8 @@
 // on their own (κ₀ = 0, λ₀ = 1), and bend under moments with the cells' compliance.
 //
 // Left out, by construction: the caps' and clamp's disturbance of the sections next to
-// them (the planar cell rod's +3 % at low pressure on the thesis 3CA), the taper within
-// one pitch, shear, the pressures' effect on GJ (the cells' torsion is taken at rest) and
+// them unless end tables give it (SpatialEndTable; without them the planar cell rod is +4 %
+// off on the thesis 3CA), the taper within one pitch, shear, the pressures' effect on GJ (the cells' torsion is taken at rest) and
 // any coupling of twist with bending or stretch.
 #include <Eigen/Core>
 #include <string>
@@ -36,10 +36,22 @@ struct SpatialCellTable {
   double mass_per_length_kg_per_mm = 0;
 };
 
+/// An end of a segment measured on its own (fem/scenes/tca_end_cell.hpp): over `length_mm` from
+/// its end face, its own rotation and elongation along the ramp replace the cells' κ₀ and λ₀
+/// (spread evenly over that length: the turn across the end is exact, the path within it
+/// approximate); the compliances there stay the cells'.
+struct SpatialEndTable {
+  bool at_top = false;  // the end at the segment's z = length (towards the clamp), else at z = 0
+  double length_mm = 0;
+  std::vector<double> level, elongation_mm;
+  std::vector<Eigen::Vector2d> rotation_rad;  // the upper face's against the lower one's, about x and y
+};
+
 struct SpatialCellPiece {
   double length_mm = 0;
   std::vector<SpatialCellTable> cells;  // empty: a rigid connector
-  double cap_mm = 0;                    // segment: solid cap at each end
+  std::vector<SpatialEndTable> ends;    // segment: none, or either end or both
+  double cap_mm = 0;                    // segment: solid cap at each end (where no end table covers it)
   double mass_kg = 0;                   // connector: its mass
 };
 

@@ -38,7 +38,7 @@ TcaSceneSpec spl_segment_cell_scene(const SplSceneSpec& spec, int n, int cell_le
   return s;
 }
 
-SplCells spl_cells(const SplSceneSpec& spec, int cell_levels) {
+SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::function<void(TcaSceneSpec&)>& adjust) {
   const auto t0 = std::chrono::steady_clock::now();
   SplCells out;
   out.rod.gravity_m_s2 = spec.gravity_m_s2;
@@ -49,7 +49,14 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels) {
     int segment, ring;
     std::size_t piece;
   };
+  struct EndJob {
+    int segment;
+    TcaEnd end;
+    EndFaceSupport face;
+    std::size_t piece;
+  };
   std::vector<Job> jobs;
+  std::vector<EndJob> end_jobs;
   std::array<TcaSceneSpec, 3> scenes;
   for (const RodPiece& piece : spl_rod_pieces(spec.design, spec.connector_material)) {
     SpatialCellPiece p;
@@ -61,23 +68,53 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels) {
     }
     const int n = static_cast<int>(out.rod.pieces.size()) / 2;
     scenes[n] = spl_segment_cell_scene(spec, n, cell_levels);
+    if (adjust) adjust(scenes[n]);
     p.length_mm = scenes[n].design.actuator.length_mm;
     p.cap_mm = scenes[n].design.actuator.end_cap_thickness_mm;
-    out.rings[n] = cell_rod_rings(scenes[n].design.actuator.ring_count);
+    const int ring_count = scenes[n].design.actuator.ring_count;
+    out.rings[n] = cell_rod_rings(ring_count);
     if (out.rings[n].empty()) {
       out.failure = "segment " + std::to_string(n + 1) + " has no rings: the cell rod needs a ring pitch";
       return out;
     }
     for (int ring : out.rings[n]) jobs.push_back({n, ring, out.rod.pieces.size()});
+    // Its ends: the top bonded to the connector above; the bottom to the one below, but the tip's free.
+    out.end_rings[n] = end_cell_rings(scenes[n].cell_rod_end_rings, ring_count);
+    if (scenes[n].cell_rod_end_rings > 0 && out.end_rings[n] == 0)
+      out.end_cells_note += (out.end_cells_note.empty() ? "" : "; ") + std::string("segment ") + std::to_string(n + 1) +
+                            ": " + no_end_cells_note(scenes[n].cell_rod_end_rings, ring_count);
+    if (out.end_rings[n] > 0) {
+      end_jobs.push_back({n, TcaEnd::top, EndFaceSupport::bonded, out.rod.pieces.size()});
+      end_jobs.push_back({n, TcaEnd::bottom, n < 2 ? EndFaceSupport::bonded : EndFaceSupport::free, out.rod.pieces.size()});
+    }
     out.rod.pieces.push_back(p);
   }
-  // The cells, and each one's torsion at rest, side by side (parallel_tasks).
+  // The end cells, then the cells and each one's torsion at rest, side by side (parallel_tasks).
+  const int end_count = static_cast<int>(end_jobs.size());
+  std::vector<TcaEndCellResult> ends(end_jobs.size());
   std::vector<TcaCellResult> cells(jobs.size());
   std::vector<double> torsion(jobs.size());
-  parallel_tasks(static_cast<int>(jobs.size()), [&](int i) {
+  parallel_tasks(end_count + static_cast<int>(jobs.size()), [&](int i) {
+    if (i < end_count) {
+      const EndJob& e = end_jobs[i];
+      ends[i] = run_tca_end_cell(scenes[e.segment], e.end, out.end_rings[e.segment], e.face);
+      return;
+    }
+    i -= end_count;
     cells[i] = run_tca_cell(scenes[jobs[i].segment], jobs[i].ring);
     torsion[i] = cell_torsion_stiffness(scenes[jobs[i].segment], jobs[i].ring);
   });
+  for (std::size_t i = 0; i < end_jobs.size(); ++i) {
+    const EndJob& e = end_jobs[i];
+    const auto& p = scenes[e.segment].chamber_pressure_kPa;
+    out.largest_end_cell_dofs = std::max(out.largest_end_cell_dofs, ends[i].dofs);
+    out.outcomes.push_back(ends[i].path.outcome);
+    if (ends[i].path.outcome != PathOutcome::completed)
+      out.notes += " (segment " + std::to_string(e.segment + 1) + ", " + (e.end == TcaEnd::top ? "top" : "bottom") +
+                   " end: " + ends[i].path.diagnosis + ")";
+    out.rod.pieces[e.piece].ends.push_back(spatial_end_table(ends[i], *std::max_element(p.begin(), p.end())));
+  }
+  out.end_cells = end_count;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const TcaCellResult& cell = cells[i];
     const int n = jobs[i].segment, ring = jobs[i].ring;

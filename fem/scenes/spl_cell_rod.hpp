@@ -8,7 +8,11 @@
 // the 3CA ladder's cell-rod rung (Hex20/P1 at 27 points, level 1 cross-section, level 4's
 // layers), a half model where a segment's pressures are mirror-symmetric (a lone chamber,
 // two equal ones, none), else the full one; they run side by side, one thread each.
+// Each segment's ends are end cells through the rung's end rings (tca_end_cell.hpp), where it
+// has more than twice as many rings: its top bonded to the connector above, its bottom to the
+// one below, the tip's free; their turn and elongation replace the cells' over their length.
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -28,14 +32,20 @@ struct SplCells {
   SpatialCellRodSpec rod;                      // with the scene's gravity and tip mass
   std::array<std::vector<int>, 3> rings;       // the cells of each segment
   std::array<bool, 3> half_model{};            // per segment's cells
+  std::array<int, 3> end_rings{};              // each segment's end cells' (0: none, rigid caps)
   int cells = 0, largest_cell_dofs = 0;
+  int end_cells = 0, largest_end_cell_dofs = 0;
+  std::string end_cells_note;                  // the segments without end cells, and why
   double seconds = 0;                          // wall time of all the cells (run side by side)
-  std::vector<PathOutcome> outcomes;           // per cell, in order
+  std::vector<PathOutcome> outcomes;           // per end cell, then per cell, in order
   std::string notes;                           // the cells that stopped short, and why
   std::string failure;                         // why there are no cells (a segment without rings)
 };
-/// `cell_levels`: the load levels at which the cells report (every 1/cell_levels of the ramp).
-SplCells spl_cells(const SplSceneSpec& spec, int cell_levels = 16);
+/// `cell_levels`: the load levels at which the cells report (every 1/cell_levels of the ramp);
+/// `adjust`, if given, changes each segment's cell scene after spl_segment_cell_scene (a benchmark's
+/// other mesh or end rings).
+SplCells spl_cells(const SplSceneSpec& spec, int cell_levels = 16,
+                   const std::function<void(TcaSceneSpec&)>& adjust = {});
 
 struct SplCellRodResult {
   std::vector<SplState> curve;        // rest (under gravity), then every output level the rod reached

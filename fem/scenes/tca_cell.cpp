@@ -266,6 +266,25 @@ EndTable end_table(const TcaEndCellResult& end) {
   return t;
 }
 
+SpatialEndTable spatial_end_table(const TcaEndCellResult& end, double peak_kPa) {
+  SpatialEndTable t;
+  t.at_top = end.end == TcaEnd::top;
+  t.length_mm = end.length_mm;
+  // Up the ramp only, as end_table.
+  for (const TcaEndState& s : end.states)
+    if (s.is_output && (t.level.empty() || s.pressure_kPa > peak_kPa * t.level.back())) {
+      t.level.push_back(peak_kPa > 0 ? s.pressure_kPa / peak_kPa : 0.0);
+      t.rotation_rad.push_back(s.rotation_vector_rad);
+      t.elongation_mm.push_back(s.elongation_mm);
+    }
+  if (peak_kPa <= 0 && t.level.size() == 1) {  // unloaded: its rest state holds at every level
+    t.level.push_back(1.0);
+    t.rotation_rad.push_back(t.rotation_rad.front());
+    t.elongation_mm.push_back(t.elongation_mm.front());
+  }
+  return t;
+}
+
 CellRodSpec tca_cell_rod(const TcaSceneSpec& spec, const std::vector<TcaCellResult>& cells,
                          const std::vector<TcaEndCellResult>& ends) {
   CellRodSpec rod;
@@ -290,6 +309,13 @@ void use_cell_rod_rung(TcaSceneSpec& spec) {
       spec.integration = m.reduced_integration ? ElementIntegration::reduced : ElementIntegration::full;
       spec.cell_rod_end_rings = m.end_rings;
     }
+}
+
+int end_cell_rings(int asked, int ring_count) { return asked > 0 && 2 * asked < ring_count ? asked : 0; }
+
+std::string no_end_cells_note(int asked, int ring_count) {
+  return "no end cells: " + std::to_string(ring_count) + " rings, and ends through " + std::to_string(asked) +
+         " rings need more than " + std::to_string(2 * asked) + "; rigid caps";
 }
 
 std::vector<int> cell_rod_rings(int ring_count) {
@@ -345,12 +371,8 @@ CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
   Eigen::Vector3d bend = tca_bend_direction(spec.chamber_pressure_kPa);
   if (bend.norm() > 0) bend.normalize();
   out.rings = cell_rod_rings(n);
-  out.end_rings = !out.spatial && 2 * spec.cell_rod_end_rings < n ? spec.cell_rod_end_rings : 0;
-  if (spec.cell_rod_end_rings > 0 && out.end_rings == 0)
-    out.end_cells_note = out.spatial ? "no end cells: the loads leave one plane, and the spatial cell rod has rigid caps"
-                                     : "no end cells: " + std::to_string(n) + " rings, and ends through " +
-                                           std::to_string(spec.cell_rod_end_rings) + " rings need more than " +
-                                           std::to_string(2 * spec.cell_rod_end_rings) + "; rigid caps";
+  out.end_rings = end_cell_rings(spec.cell_rod_end_rings, n);
+  if (spec.cell_rod_end_rings > 0 && out.end_rings == 0) out.end_cells_note = no_end_cells_note(spec.cell_rod_end_rings, n);
   const int end_count = out.end_rings > 0 ? 2 : 0;
   std::vector<TcaCellResult> cells(out.rings.size());
   std::vector<TcaEndCellResult> ends(end_count);
@@ -359,7 +381,8 @@ CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
   const auto t_cells = std::chrono::steady_clock::now();
   parallel_tasks(end_count + static_cast<int>(out.rings.size()), [&](int i) {
     if (i < end_count) {
-      ends[i] = run_tca_end_cell(spec, i == 0 ? TcaEnd::bottom : TcaEnd::top, out.end_rings);
+      const TcaEnd end = i == 0 ? TcaEnd::bottom : TcaEnd::top;
+      ends[i] = run_tca_end_cell(spec, end, out.end_rings, tca_scene_end_support(end));
       return;
     }
     i -= end_count;
@@ -385,6 +408,7 @@ CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
       piece.cells.push_back(spatial_cell_table(cells[i], peak));
       piece.cells.back().torsion_compliance_per_Nmm2 = 1 / torsion[i];
     }
+    for (const auto& e : ends) piece.ends.push_back(spatial_end_table(e, peak));
     spatial.pieces = {piece};
     spatial.gravity_m_s2 = spec.gravity_m_s2;
   }

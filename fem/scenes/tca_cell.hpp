@@ -90,6 +90,10 @@ SpatialCellTable spatial_cell_table(const TcaCellResult& cell, double peak_kPa);
 /// An end cell's output states as the cell rod's end table (cell_rod.hpp, EndTable).
 EndTable end_table(const TcaEndCellResult& end);
 
+/// An end cell's output states as the spatial cell rod's end table (spatial_cell_rod.hpp), along the
+/// load level p/peak_kPa.
+SpatialEndTable spatial_end_table(const TcaEndCellResult& end, double peak_kPa);
+
 /// The cell rod of spec's 3CA from its cells and end cells, if any (cell_rod.hpp): length, caps,
 /// ends, and the spec's gravity resolved along the pressures' bend direction and the axis (user
 /// frame).
@@ -104,12 +108,17 @@ void use_cell_rod_rung(TcaSceneSpec& spec);
 /// fewer; none without rings).
 std::vector<int> cell_rod_rings(int ring_count);
 
+/// The rings an end cell takes when `asked` for (0: none): a 3CA (or SPL segment) has end cells only
+/// where it has more than twice as many rings; and the note that says so where it has not.
+int end_cell_rings(int asked, int ring_count);
+std::string no_end_cells_note(int asked, int ring_count);
+
 /// The 3CA scene on the cell rod: cells about the first, middle and last rings (fewer when
 /// the design has fewer), the rod evaluated at rest and at every output pressure. Loads in one
-/// plane (a mirror plane through the axis) take the planar rod (cell_rod.hpp), with both ends
-/// as end cells through spec.cell_rod_end_rings rings where the 3CA has more than twice as many;
-/// any others the spatial one (spatial_cell_rod.hpp) with the cells' torsion and rigid caps; the
-/// bending angle is then the tip axis' tilt from rest, signed by the pressures' bend direction.
+/// plane (a mirror plane through the axis) take the planar rod (cell_rod.hpp), any others the
+/// spatial one (spatial_cell_rod.hpp) with the cells' torsion; the bending angle is then the tip
+/// axis' tilt from rest, signed by the pressures' bend direction. Both rods take both ends as end
+/// cells through spec.cell_rod_end_rings rings where the 3CA has more than twice as many.
 struct CellRodTcaResult {
   std::vector<int> rings;
   int end_rings = 0;                           // the end cells' (0: none, rigid caps)
