@@ -9,6 +9,8 @@
 //                  [--end-rings N]         (also both ends through their first N rings,
 //                                           fem/scenes/tca_end_cell.hpp: their own turn against
 //                                           the cells' κ₀ over the same length, and the rod with them)
+//                  [--torsion]             (also each cell's GJ along the pressure ramp: the periodic
+//                                           cell under its pressures, cell_torsion_along_ramp)
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -30,6 +32,7 @@ using namespace softarm;
 int main(int argc, char** argv) {
   std::string config = "configs/tca_thesis.json", rings_arg, compare;
   int axial_level = -1, end_rings = 0;
+  bool torsion = false;
   fem::CellEndLoad end_load;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -37,6 +40,7 @@ int main(int argc, char** argv) {
     else if (a == "--axial-level" && i + 1 < argc) axial_level = std::atoi(argv[++i]);
     else if (a == "--compare" && i + 1 < argc) compare = argv[++i];
     else if (a == "--end-rings" && i + 1 < argc) end_rings = std::atoi(argv[++i]);
+    else if (a == "--torsion") torsion = true;
     else if (a == "--moment-Nmm" && i + 1 < argc) {
       double mx = 0, my = 0;
       std::sscanf(argv[++i], "%lf,%lf", &mx, &my);
@@ -56,6 +60,16 @@ int main(int argc, char** argv) {
   for (std::string item; std::getline(list, item, ',');) rings.push_back(std::atoi(item.c_str()));
   std::printf("%s: %d rings, pitch %.4f mm, threads %d\n", config.c_str(), n, spec.design.actuator.pitch(),
               fem::thread_count());
+  if (torsion)
+    for (int ring : rings) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const auto gj = fem::cell_torsion_along_ramp(spec, ring);
+      std::printf("ring %d: GJ along the ramp (%.1f s)\n%12s %14s %10s\n", ring,
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), "pressure_kPa",
+                  "GJ_Nmm2", "vs_rest");
+      for (const auto& g : gj)
+        std::printf("%12.2f %14.1f %10.3f\n", g.pressure_kPa, g.stiffness_Nmm2, g.stiffness_Nmm2 / gj.front().stiffness_Nmm2);
+    }
   std::vector<fem::TcaCellResult> cells;
   double cell_seconds = 0;
   for (int ring : rings) {

@@ -171,10 +171,9 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
   return out;
 }
 
-double cell_torsion_stiffness(const TcaSceneSpec& spec, int ring) {
+std::vector<CellTorsionState> cell_torsion_along_ramp(const TcaSceneSpec& spec, int ring) {
   TcaSceneSpec full = spec;
   full.allow_symmetry = false;  // a twist is not mirror-symmetric
-  full.chamber_pressure_kPa = {0, 0, 0};
   full.gravity_m_s2.setZero();
   const ModelChoice model = choose_tca_model(full);
   const Mesh mesh = mesh_tca_cell(full.design, ring, solid_mesh_options(full, model));
@@ -206,14 +205,40 @@ double cell_torsion_stiffness(const TcaSceneSpec& spec, int ring) {
   const double mu = stiffest_silicone_shear_modulus(mesh, materials);
   problem.add_form(std::make_shared<PeriodicFaceForm>(facing_nodes(mesh.node_sets.at("top"), bottom, X, 1e-9), X,
                                                       twist_pilot, bend_pilot, kPlanePenaltyRatio * mu));
+  if (full.newton.rotate_stiff_parts) problem.set_stiff_inclusions(stiff_parts(mesh, materials));
+  LoadState load;
+  load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
+  const ChamberLoads chambers = add_chamber_loads(
+      mesh, {full.chamber_pressure_kPa.begin(), full.chamber_pressure_kPa.end()}, load, problem);
   problem.finalize();
-  LinearSolver solver;
-  if (solver.factorize(problem.evaluate(X, false, true).hessian) != LinearSolver::Status::positive_definite)
-    return std::nan("");
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.num_dofs());
-  u[3 * twist_pilot + 2] = 1;  // a unit torque on φ
-  problem.zero_prescribed(u);
-  return spec.design.actuator.pitch() / u.dot(solver.solve(u));  // GJ = L / (dφ/dT)
+  // GJ = L / (dφ/dT) from the tangent at a state: φ's response to a unit torque (NaN where the tangent
+  // is not positive definite).
+  LinearSolver solver;  // one symbolic analysis for every state
+  const auto stiffness_at = [&](const Vector& x) {
+    if (solver.factorize(problem.evaluate(x, false, true).hessian) != LinearSolver::Status::positive_definite)
+      return std::nan("");
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.num_dofs());
+    u[3 * twist_pilot + 2] = 1;
+    problem.zero_prescribed(u);
+    return spec.design.actuator.pitch() / u.dot(solver.solve(u));
+  };
+  std::vector<CellTorsionState> out;
+  Vector x = X;
+  if (chambers.loaded.empty()) {
+    out.push_back({0.0, stiffness_at(x)});
+    return out;
+  }
+  run_pressure_path(problem, chambers.loaded, load, x, tca_pressure_path(full, chambers, false, 0),
+                    [&](const PressureState& p, const Vector& xs) {
+                      if (p.is_output) out.push_back({p.pressure_kPa, stiffness_at(xs)});
+                    });
+  return out;
+}
+
+double cell_torsion_stiffness(const TcaSceneSpec& spec, int ring) {
+  TcaSceneSpec rest = spec;
+  rest.chamber_pressure_kPa = {0, 0, 0};
+  return cell_torsion_along_ramp(rest, ring).front().stiffness_Nmm2;
 }
 
 CellTable cell_table(const TcaCellResult& cell) {

@@ -78,6 +78,14 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
 /// where the tangent is not positive definite.
 double cell_torsion_stiffness(const TcaSceneSpec& spec, int ring);
 
+/// The same cell's GJ along the spec's pressure ramp (the periodic cell stretching and bending freely
+/// under its pressures), at the rest state and every output the ramp reached.
+struct CellTorsionState {
+  double pressure_kPa = 0;
+  double stiffness_Nmm2 = 0;  // NaN where the tangent is not positive definite
+};
+std::vector<CellTorsionState> cell_torsion_along_ramp(const TcaSceneSpec& spec, int ring);
+
 /// A cell's output states as a table for the cell rod (cell_rod.hpp): those with a
 /// positive definite tangent, in order.
 CellTable cell_table(const TcaCellResult& cell);
