@@ -4,14 +4,17 @@
 //
 //   bench_spl_cell_rod [config] [--full] [--cell-levels N] [--threads N] [--compare summary.json]
 //                      [--torsion-scales 1,0.5,2] [--tables] [--save-cells F | --load-cells F] [--rigid-caps]
-//                      [--axial-level N] [--end-rings N]
+//                      [--axial-level N] [--end-rings N] [--moments]
 //   --full: full-model cells even where a segment's pressures allow a half model
 //   --save-cells F / --load-cells F: keep the cells' tables in a JSON file / pose from one (no cells run)
 //   --tables: print every cell's table (stretch, curvature vector, compliances) at its outputs
 //   --axial-level N / --end-rings N: the cells' layers as the 3D mesh's at level N / ends through N rings
 //     (0: none), instead of the 3CA ladder's cell-rod rung's
+//   --moments: the moment (section frame) and tension the rod puts on each cell at full pressure,
+//     for bench_tca_cell --moment-Nmm (how far each cell's tangent compliance carries)
 //   --rigid-caps: pose without the end cells' tables (the cells' response up to rigid caps)
 //   --torsion-scales: pose again with each segment's GJ times each factor (the cells once)
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -97,7 +100,7 @@ void read_tables(const nlohmann::json& j, fem::SpatialCellRodSpec& rod) {
 
 int main(int argc, char** argv) {
   std::string config = "configs/spl_thesis_pose.json", compare, save_cells, load_cells;
-  bool full = false, tables = false, rigid_caps = false;
+  bool full = false, tables = false, rigid_caps = false, moments = false;
   int cell_levels = 16, axial_level = 0, end_rings = -1;
   std::vector<double> torsion_scales;
   for (int i = 1; i < argc; ++i) {
@@ -106,6 +109,7 @@ int main(int argc, char** argv) {
     else if (a == "--full") full = true;
     else if (a == "--tables") tables = true;
     else if (a == "--rigid-caps") rigid_caps = true;
+    else if (a == "--moments") moments = true;
     else if (a == "--axial-level" && i + 1 < argc) axial_level = std::atoi(argv[++i]);
     else if (a == "--end-rings" && i + 1 < argc) end_rings = std::atoi(argv[++i]);
     else if (a == "--save-cells" && i + 1 < argc) save_cells = argv[++i];
@@ -172,6 +176,23 @@ int main(int argc, char** argv) {
                       k.y(), m(0, 0), m(0, 1), m(1, 0), m(1, 1), c.axial_compliance_per_N[i]);
         }
       }
+  if (moments) {  // the rod up its ramp to full pressure, then each cell's load in its section's frame
+    fem::SpatialCellRodState s;
+    for (double level : spec.output_levels) s = fem::solve_spatial_cell_rod(cells.rod, level, s.ok ? &s : nullptr);
+    if (s.ok) {
+      std::printf("\nloads on the cells at full pressure (section frame):\n%8s %8s %12s %12s %12s\n", "segment",
+                  "z_mm", "Mx_Nmm", "My_Nmm", "Mz_Nmm");
+      for (std::size_t p = 1; p < cells.rod.pieces.size(); p += 2) {
+        const auto& piece = cells.rod.pieces[p];
+        const int first = s.piece_first_node[p], count = s.piece_last_node[p] - first;
+        for (const auto& c : piece.cells) {
+          const int i = first + std::clamp(static_cast<int>((piece.length_mm - c.z_mm) / piece.length_mm * count), 0, count - 1);
+          const Eigen::Vector3d m = s.frame[i].transpose() * s.moment_Nmm[i];
+          std::printf("%8zu %8.2f %12.1f %12.1f %12.1f\n", p / 2 + 1, c.z_mm, m.x(), m.y(), m.z());
+        }
+      }
+    }
+  }
   nlohmann::json reference;
   if (!compare.empty()) reference = nlohmann::json::parse(std::ifstream(compare));
   if (torsion_scales.empty()) torsion_scales = {1.0};
