@@ -120,7 +120,8 @@ int simulate_cell_rod_spl(const fem::SceneConfig& config) {
     std::cout << (c.half_model[n] ? ", half model" : ", full model");
     if (c.end_rings[n] > 0)
       std::cout << "; end cells through " << c.end_rings[n] << " rings (top bonded to its connector, bottom "
-                << (n < 2 ? "bonded to its connector)" : "free: the tip)");
+                << (fem::spl_end_support(n, fem::TcaEnd::bottom) == fem::EndFaceSupport::bonded ? "bonded to its connector)"
+                                                                                                 : "free: the tip)");
     std::cout << "\n";
     cells.push_back({{"segment", n + 1}, {"rings", c.rings[n]}, {"half_model", c.half_model[n]}, {"end_rings", c.end_rings[n]}});
   }

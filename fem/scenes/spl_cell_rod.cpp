@@ -38,6 +38,10 @@ TcaSceneSpec spl_segment_cell_scene(const SplSceneSpec& spec, int n, int cell_le
   return s;
 }
 
+EndFaceSupport spl_end_support(int n, TcaEnd end) {
+  return end == TcaEnd::bottom && n == 2 ? EndFaceSupport::free : EndFaceSupport::bonded;
+}
+
 SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::function<void(TcaSceneSpec&)>& adjust) {
   const auto t0 = std::chrono::steady_clock::now();
   SplCells out;
@@ -78,14 +82,13 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::functio
       return out;
     }
     for (int ring : out.rings[n]) jobs.push_back({n, ring, out.rod.pieces.size()});
-    // Its ends: the top bonded to the connector above; the bottom to the one below, but the tip's free.
     out.end_rings[n] = end_cell_rings(scenes[n].cell_rod_end_rings, ring_count);
     if (scenes[n].cell_rod_end_rings > 0 && out.end_rings[n] == 0)
       out.end_cells_note += (out.end_cells_note.empty() ? "" : "; ") + std::string("segment ") + std::to_string(n + 1) +
                             ": " + no_end_cells_note(scenes[n].cell_rod_end_rings, ring_count);
     if (out.end_rings[n] > 0) {
-      end_jobs.push_back({n, TcaEnd::top, EndFaceSupport::bonded, out.rod.pieces.size()});
-      end_jobs.push_back({n, TcaEnd::bottom, n < 2 ? EndFaceSupport::bonded : EndFaceSupport::free, out.rod.pieces.size()});
+      for (TcaEnd end : {TcaEnd::top, TcaEnd::bottom})
+        end_jobs.push_back({n, end, spl_end_support(n, end), out.rod.pieces.size()});
     }
     out.rod.pieces.push_back(p);
   }

@@ -18,6 +18,7 @@
 
 #include "fem/reduced/spatial_cell_rod.hpp"
 #include "fem/scenes/spl_scene.hpp"
+#include "fem/scenes/tca_end_cell.hpp"
 
 namespace softarm::fem {
 
@@ -25,6 +26,10 @@ namespace softarm::fem {
 /// pressures (outputs every 1/cell_levels of their ramp), the SPL's solver settings and the
 /// 3CA ladder's cell-rod mesh.
 TcaSceneSpec spl_segment_cell_scene(const SplSceneSpec& spec, int n, int cell_levels);
+
+/// How segment n's (0..2) `end` is supported in the arm: bonded to its connector (the top; the bottom of
+/// segments 1 and 2), or free (the tip).
+EndFaceSupport spl_end_support(int n, TcaEnd end);
 
 /// Each segment's cells as the rod's tables: the expensive part, which depends on the design,
 /// the materials and each segment's pressures only (not on gravity or the tip mass).
