@@ -76,14 +76,17 @@ int simulate_cell_rod_tca(const fem::SceneConfig& config) {
   if (r.spatial) std::cout << "(the loads leave one plane: the spatial cell rod, with the cells' torsion)\n";
   if (!r.end_cells_note.empty()) std::cout << "(" << r.end_cells_note << ")\n";
   std::ofstream csv = open_output_file(dir, "curve.csv");
-  csv << "pressure_kPa,bending_angle_deg,tip_along_bend_mm,tip_z_mm\n";
+  // The tip in the bend's frame: along the pressures' bend, across it (e_z × bend: the sideways sag
+  // of a load out of the bend's plane, 0 on the planar rod) and along z.
+  csv << "pressure_kPa,bending_angle_deg,tip_along_bend_mm,tip_across_bend_mm,tip_z_mm\n";
   std::cout << std::setw(14) << "pressure_kPa" << std::setw(14) << "bending_deg" << std::setw(18) << "tip_along_bend_mm"
-            << std::setw(12) << "tip_z_mm" << "\n";
+            << std::setw(19) << "tip_across_bend_mm" << std::setw(12) << "tip_z_mm" << "\n";
   for (const auto& s : r.curve) {
-    csv << s.pressure_kPa << "," << s.bending_angle_deg << "," << s.tip_along_bend_mm << "," << s.tip_z_mm << "\n";
+    csv << s.pressure_kPa << "," << s.bending_angle_deg << "," << s.tip_along_bend_mm << "," << s.tip_across_bend_mm
+        << "," << s.tip_z_mm << "\n";
     std::cout << std::fixed << std::setprecision(2) << std::setw(14) << s.pressure_kPa << std::setprecision(3)
-              << std::setw(14) << s.bending_angle_deg << std::setw(18) << s.tip_along_bend_mm << std::setw(12)
-              << s.tip_z_mm << "\n";
+              << std::setw(14) << s.bending_angle_deg << std::setw(18) << s.tip_along_bend_mm << std::setw(19)
+              << s.tip_across_bend_mm << std::setw(12) << s.tip_z_mm << "\n";
   }
   std::cout.unsetf(std::ios::floatfield);
   std::cout << spec.target_bending_deg << "° ";
@@ -95,7 +98,8 @@ int simulate_cell_rod_tca(const fem::SceneConfig& config) {
   nlohmann::json curve = nlohmann::json::array();
   for (const auto& s : r.curve)
     curve.push_back({{"pressure_kPa", s.pressure_kPa}, {"bending_angle_deg", s.bending_angle_deg},
-                     {"tip_along_bend_mm", s.tip_along_bend_mm}, {"tip_z_mm", s.tip_z_mm}});
+                     {"tip_along_bend_mm", s.tip_along_bend_mm}, {"tip_across_bend_mm", s.tip_across_bend_mm},
+                     {"tip_z_mm", s.tip_z_mm}});
   write_json_file(dir, "summary.json",
                   {{"scene", "tca"}, {"model", model_json(config)}, {"curve", curve},
                    {"target_pressure_kPa", r.target_pressure_kPa ? nlohmann::json(*r.target_pressure_kPa) : nlohmann::json()},

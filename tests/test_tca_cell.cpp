@@ -148,6 +148,8 @@ TEST_CASE("Gravity across the bend takes the 3CA's cell rod through the spatial 
                              << " mm, tilt " << across.curve.front().bending_angle_deg << "°");
   CHECK(sag > 0.5);
   CHECK(std::abs(across.curve.front().tip_along_bend_mm) < 1e-9);
+  CHECK(across.curve.front().tip_across_bend_mm == Approx(sag).epsilon(2e-4));  // towards +y, where gravity pulls
+  CHECK(along.curve.front().tip_across_bend_mm == 0);  // the planar rod stays in its plane
   // (to 5·10⁻⁵: the spatial rod also stretches under the weight's tension, the planar one does not)
   CHECK(std::abs(across.curve.front().bending_angle_deg) ==
         Approx(std::abs(along.curve.front().bending_angle_deg)).epsilon(2e-4));

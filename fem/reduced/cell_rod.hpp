@@ -53,6 +53,7 @@ struct CellRodState {
   double pressure_kPa = 0;
   double bending_angle_deg = 0;      // tip tangent against the rest tangent, > 0 towards the bend
   double tip_along_bend_mm = 0, tip_z_mm = 0;  // the free end's centre (rest: 0, 0)
+  double tip_across_bend_mm = 0;     // along e_z × bend: 0 in one plane, the spatial rod's sideways sag
   int iterations = 0;                // shape–moment fixed-point iterations
   bool ok = false;
   std::string diagnosis;             // why not ok

@@ -6,6 +6,8 @@
 #include <limits>
 #include <memory>
 
+#include <Eigen/Geometry>
+
 #include "fem/core/parallel.hpp"
 #include "fem/forms/periodic_face_form.hpp"
 #include "fem/forms/plane_face_form.hpp"
@@ -373,6 +375,7 @@ CellRodState solve_spatial_tca(const SpatialCellRodSpec& rod, const Eigen::Vecto
   out.bending_angle_deg = std::acos(std::clamp(-tangent.z(), -1.0, 1.0)) * kDeg;
   if (tangent.dot(bend) < 0) out.bending_angle_deg = -out.bending_angle_deg;
   out.tip_along_bend_mm = tip.dot(bend);
+  out.tip_across_bend_mm = tip.dot(Eigen::Vector3d::UnitZ().cross(bend));
   out.tip_z_mm = tip.z();
   out.ok = true;
   return out;
