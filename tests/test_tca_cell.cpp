@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "fem/core/json_reader.hpp"
 #include "fem/reduced/rod_section.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/tca_cell.hpp"
+#include "support/untapered_3ca.hpp"
 
 using namespace softarm::fem;
 
@@ -167,23 +167,6 @@ TEST_CASE("Gravity across the bend takes the 3CA's cell rod through the spatial 
   CHECK(a.bending_angle_deg < w.bending_angle_deg + std::abs(along.curve.front().bending_angle_deg));
 }
 
-namespace {
-/// The thesis 3CA's distal section (r = 9 mm, no taper) over `rings` ring pitches, chambers 2 and 3
-/// to 150 kPa, no gravity; Hex20/P1 at 27 points, level 1, `axial_level`'s layers.
-TcaSceneSpec untapered_3ca(int rings, int axial_level) {
-  nlohmann::json j = load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/convergence/tca_thesis_hex20r.json");
-  j.erase("description");
-  j["geometry"]["length_mm"] = rings * 160.0 / 30;
-  j["geometry"]["top_radius_mm"] = 9;
-  j["geometry"].erase("ring_count_normalised");
-  j["geometry"]["ring_count"] = rings;
-  j["mesh"] = {{"level", 1}, {"axial_level", axial_level}, {"element_order", 2}, {"serendipity", true},
-               {"reduced_integration", false}};
-  j["load"] = {{"chamber_pressures_kPa", {0, 150, 150}}, {"gravity_m_s2", {0, 0, 0}}, {"output_count", 2}};
-  return read_scene_config(j).tca;
-}
-}  // namespace
-
 TEST_CASE("A ring-pitch cell bends as the inside of a long 3CA does, at the 3D mesh's layers through the gap",
           "[cell]") {
   // The inside of a long 3CA, free of its ends: the bend that six more ring pitches add (12 against
@@ -192,11 +175,11 @@ TEST_CASE("A ring-pitch cell bends as the inside of a long 3CA does, at the 3D m
   // the two meshes'. Measured: 0.7998 °/pitch at 75 kPa against 0.7932 (level 1) and 0.8097 (level 2),
   // 1.6360 at 150 kPa against 1.6037 and 1.6675. So an "equal mesh" comparison of a cell rod at level L
   // with the 3D model at level L sets a finer model against a coarser one (README, "Matched layers").
-  const double p = untapered_3ca(6, 1).design.actuator.pitch();
+  const double p = softarm::test::untapered_3ca(6, 1, 2).design.actuator.pitch();
   std::vector<std::vector<double>> inside;  // per 3D level, per output
   for (int level : {1, 2}) {
-    const TcaResult short_one = run_tca_scene(untapered_3ca(6, level));
-    const TcaResult long_one = run_tca_scene(untapered_3ca(12, level));
+    const TcaResult short_one = run_tca_scene(softarm::test::untapered_3ca(6, level, 2));
+    const TcaResult long_one = run_tca_scene(softarm::test::untapered_3ca(12, level, 2));
     REQUIRE(short_one.path.outcome == PathOutcome::completed);
     REQUIRE(long_one.path.outcome == PathOutcome::completed);
     REQUIRE(short_one.curve.size() == long_one.curve.size());
@@ -204,7 +187,7 @@ TEST_CASE("A ring-pitch cell bends as the inside of a long 3CA does, at the 3D m
     for (std::size_t i = 1; i < long_one.curve.size(); ++i)
       inside.back().push_back((long_one.curve[i].bending_angle_deg - short_one.curve[i].bending_angle_deg) / 6);
   }
-  const TcaCellResult cell = run_tca_cell(untapered_3ca(6, 1), 3);
+  const TcaCellResult cell = run_tca_cell(softarm::test::untapered_3ca(6, 1, 2), 3);
   REQUIRE(cell.path.outcome == PathOutcome::completed);
   std::vector<double> per_pitch;
   for (const auto& s : cell.states)

@@ -10,27 +10,16 @@
 #include <string>
 #include <vector>
 
-#include "fem/core/json_reader.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/tca_cell.hpp"
+#include "support/untapered_3ca.hpp"
 
 using namespace softarm::fem;
-using nlohmann::json;
 
 namespace {
-/// The thesis 3CA's distal section (r = 9 mm, no taper) over seven ring pitches (37.3 mm), chambers 2
-/// and 3 to 150 kPa, no gravity; Hex20/P1 at 27 points, level 1, level 2's layers (22,602 dofs half).
-TcaSceneSpec short_3ca() {
-  json j = load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/convergence/tca_thesis_hex20r.json");
-  j.erase("description");
-  j["geometry"]["length_mm"] = 7 * 160.0 / 30;
-  j["geometry"]["top_radius_mm"] = 9;
-  j["geometry"].erase("ring_count_normalised");
-  j["geometry"]["ring_count"] = 7;
-  j["mesh"] = {{"level", 1}, {"axial_level", 2}, {"element_order", 2}, {"serendipity", true}, {"reduced_integration", false}};
-  j["load"] = {{"chamber_pressures_kPa", {0, 150, 150}}, {"gravity_m_s2", {0, 0, 0}}, {"output_count", 3}};
-  return read_scene_config(j).tca;
-}
+/// Seven ring pitches (37.3 mm) of the distal section to 150 kPa in three outputs, level 2's layers
+/// (22,602 dofs half).
+TcaSceneSpec short_3ca() { return softarm::test::untapered_3ca(7, 2, 3); }
 }  // namespace
 
 TEST_CASE("End cells bend a short 3CA as its 3D model does, closer with each ring, where rigid caps do not", "[cell]") {
