@@ -73,7 +73,7 @@ std::string sections_at(const SpatialCellRodSpec& spec, double t, std::vector<In
     struct EndRate {
       double z0, z1;
       Eigen::Vector2d curvature;
-      double stretch;
+      double stretch, torsion;  // torsion: 1/GJ over the end, 0 where the cells' holds
     };
     std::vector<EndRate> ends;
     for (const SpatialEndTable& e : piece.ends) {
@@ -83,7 +83,8 @@ std::string sections_at(const SpatialCellRodSpec& spec, double t, std::vector<In
         return std::string("the end cell at the segment's ") + (e.at_top ? "top" : "bottom") + " reached " +
                number_text(e.level.empty() ? 0.0 : e.level.back()) + " of its pressures only";
       const double z0 = e.at_top ? piece.length_mm - e.length_mm : 0.0;
-      ends.push_back({z0, z0 + e.length_mm, *turn / e.length_mm, 1 + *longer / e.length_mm});
+      ends.push_back({z0, z0 + e.length_mm, *turn / e.length_mm, 1 + *longer / e.length_mm,
+                      e.twist_compliance_per_Nmm / e.length_mm});
     }
     // From the piece's top (its z = length) down.
     for (int i = 0; i < n; ++i) {
@@ -95,15 +96,16 @@ std::string sections_at(const SpatialCellRodSpec& spec, double t, std::vector<In
         k = lagrange(z, curvature, zi);
         s.free_stretch = lagrange(z, stretch, zi);
       }
+      s.torsion = lagrange(z, torsion, zi);
       for (const EndRate& e : ends) {  // the share of the interval inside an end takes the end's rates
         const double share = overlap_share(zi, dz, e.z0, e.z1);
         k = share * e.curvature + (1 - share) * k;
         s.free_stretch = share * e.stretch + (1 - share) * s.free_stretch;
+        if (e.torsion > 0) s.torsion = share * e.torsion + (1 - share) * s.torsion;
       }
       s.free_curvature = Vec3(k.x(), k.y(), 0);
       s.bending = lagrange(z, bending, zi);
       s.axial = lagrange(z, axial, zi);
-      s.torsion = lagrange(z, torsion, zi);
       s.length = dz;
       s.mass = masses[i];
       out.push_back(s);
@@ -117,6 +119,16 @@ double spatial_cell_rod_length_mm(const SpatialCellRodSpec& spec) {
   double l = 0;
   for (const auto& p : spec.pieces) l += p.length_mm;
   return l;
+}
+
+double spatial_cell_rod_twist_compliance(const SpatialCellRodSpec& spec, std::size_t piece) {
+  std::vector<IntervalSection> sec;
+  std::vector<int> first;
+  if (std::string why = sections_at(spec, 0.0, sec, first); !why.empty()) return std::nan("");
+  const int end = piece + 1 < spec.pieces.size() ? first[piece + 1] : static_cast<int>(sec.size());
+  double c = 0;
+  for (int i = first[piece]; i < end; ++i) c += sec[i].torsion * sec[i].length;
+  return c;
 }
 
 double spatial_cell_rod_mass_kg(const SpatialCellRodSpec& spec) {

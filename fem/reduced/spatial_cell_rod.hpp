@@ -18,8 +18,9 @@
 //
 // Left out, by construction: the caps' and clamp's disturbance of the sections next to
 // them unless end tables give it (SpatialEndTable; without them the planar cell rod is +4 %
-// off on the thesis 3CA), the taper within one pitch, shear, the pressures' effect on GJ (the cells' torsion is taken at rest) and
-// any coupling of twist with bending or stretch.
+// off on the thesis 3CA; a bonded end's torsion likewise), the taper within one pitch, shear, the
+// pressures' effect on GJ (the cells' torsion is taken at rest) and any coupling of twist with
+// bending or stretch.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -39,12 +40,15 @@ struct SpatialCellTable {
 /// An end of a segment measured on its own (fem/scenes/tca_end_cell.hpp): over `length_mm` from
 /// its end face, its own rotation and elongation along the ramp replace the cells' κ₀ and λ₀
 /// (spread evenly over that length: the turn across the end is exact, the path within it
-/// approximate); the compliances there stay the cells'.
+/// approximate); the bending and axial compliances there stay the cells'. A bonded end's twist
+/// compliance at rest (fem/scenes/twist_compliance.hpp: its face held from warping, its cap
+/// solid), where given, replaces the cells' 1/GJ there, spread evenly likewise.
 struct SpatialEndTable {
   bool at_top = false;  // the end at the segment's z = length (towards the clamp), else at z = 0
   double length_mm = 0;
   std::vector<double> level, elongation_mm;
   std::vector<Eigen::Vector2d> rotation_rad;  // the upper face's against the lower one's, about x and y
+  double twist_compliance_per_Nmm = 0;        // across the end, rad per N·mm (0: the cells' GJ there)
 };
 
 struct SpatialCellPiece {
@@ -79,6 +83,10 @@ struct SpatialCellRodState {
 /// iteration.
 SpatialCellRodState solve_spatial_cell_rod(const SpatialCellRodSpec& spec, double level,
                                            const SpatialCellRodState* start = nullptr);
+
+/// The twist per unit torque (rad/(N·mm)) across piece `piece` at rest, as the rod integrates it:
+/// Σ ΔZ / GJ over its intervals, the end tables' twist compliances included (a connector's: 0).
+double spatial_cell_rod_twist_compliance(const SpatialCellRodSpec& spec, std::size_t piece);
 
 /// Total length, and mass (the cells' smeared mass and the connectors'; the tip mass excluded).
 double spatial_cell_rod_length_mm(const SpatialCellRodSpec& spec);

@@ -1,0 +1,51 @@
+#pragma once
+// Torsion of a 3CA's pieces with their ends as they are held in an arm, at rest: the twist
+// per unit torque between two faces, from the tangent at the undeformed state (linear).
+//
+// Why: the ring-pitch cell's GJ (tca_cell.hpp, cell_torsion_stiffness) is Saint-Venant's, the
+// sections warping freely and alike in every pitch. Where a segment is bonded to a rigid
+// connector its end face cannot warp, and the solid cap there (no chambers) is stiffer than a
+// chambered pitch: a stubby segment (160 mm long, ~70 mm across on the thesis SPL) is stiffer in
+// torsion than its cells say, and the arm's pose is most sensitive to torsion (README,
+// "Matched layers": GJ × 1.1 moves the thesis tip 16.5 mm).
+//
+// The faces' supports:
+// - the held face: every node fixed (bonded to a body that does not turn);
+// - the twisted face: turned rigidly by a small angle φ about the axis (x = y = 0) in its
+//   plane, u = φ·(−Y, X), and
+//   - warping free (its axial motion free): the cut of an end cell in the middle of a gap. A
+//     mid-gap plane is a mirror plane of the ringed geometry, and a twist is odd under that
+//     mirror, so there the periodic solution's in-plane motion is exactly a rigid turn and its
+//     axial motion (the warping) is free;
+//   - or warping held (axial motion zero): a face bonded to a rigid connector that turns.
+// The torque is the reaction on the twisted face, T = Σ (X × f)_z over its nodes, f the
+// elastic form's gradient after one Newton step from the prescribed motion (exact for the
+// quadratic energy at rest up to O(φ)); the compliance φ/T, rad per N·mm. NaN where the tangent
+// at rest is not positive definite.
+#include <string>
+#include <vector>
+
+#include "fem/materials/material.hpp"
+#include "fem/mesh/mesh.hpp"
+#include "fem/mesh/tca_mesher.hpp"
+#include "fem/scenes/tca_scene.hpp"
+
+namespace softarm::fem {
+
+enum class TwistedFace { warping_free, warping_held };
+
+/// The twist compliance (rad/(N·mm)) of `mesh` between node sets `held` and `twisted` (header).
+double face_twist_compliance(const Mesh& mesh, const std::vector<Material>& part_materials,
+                             ElementIntegration integration, const std::string& held, const std::string& twisted,
+                             TwistedFace twisted_face);
+
+/// A bonded end of spec's 3CA through its first `rings` rings (tca_end_cell.hpp's mesh, full
+/// model): the end face held, the cut twisted with its warping free. The rod takes it over the
+/// end's length in place of its cells' 1/GJ (spatial_cell_rod.hpp, SpatialEndTable).
+double end_cell_twist_compliance(const TcaSceneSpec& spec, TcaEnd end, int rings);
+
+/// spec's whole 3CA (full model) bonded at both ends: the top face held, the bottom face on a
+/// rigid connector that turns (warping held). The check of the rod's torsion with end cells.
+double tca_twist_compliance(const TcaSceneSpec& spec);
+
+}  // namespace softarm::fem

@@ -1,0 +1,80 @@
+// Torsion at rest with the ends held as in an arm (fem/scenes/twist_compliance.hpp): a closed
+// form for the face supports, and a short 3CA bonded at both ends against the spatial cell rod.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <vector>
+
+#include "fem/mesh/quadratic_mesh.hpp"
+#include "fem/mesh/structured_mesh.hpp"
+#include "fem/reduced/spatial_cell_rod.hpp"
+#include "fem/scenes/tca_cell.hpp"
+#include "fem/scenes/twist_compliance.hpp"
+#include "support/test_problems.hpp"
+#include "support/tube_meshes.hpp"
+#include "support/untapered_3ca.hpp"
+
+using namespace softarm::fem;
+
+TEST_CASE("A tube held at one end and turned at the other twists as Saint-Venant's torsion says", "[twist]") {
+  // A circular tube's sections stay plane and turn rigidly under torsion, so the held face and
+  // the turned one (either support: warping free or held) carry the exact solution, and
+  // C = L / (μ J), J = π (B⁴ − A⁴) / 2. Hex27 with its nodes on the cylinders: only the arcs'
+  // interpolation differs, (2π/nc)⁴ small. A = 5, B = 10, L = 20 mm, μ = 1 MPa, K = 1000 μ.
+  const double A = 5, B = 10, L = 20, mu = 1;
+  Mesh mesh = to_quadratic_3d(hollow_cylinder_mesh(A, B, L, 2, 32, 4));
+  softarm::test::snap_to_cylinders(mesh, 32);
+  const double exact = L / (mu * M_PI * (std::pow(B, 4) - std::pow(A, 4)) / 2);
+  for (const TwistedFace face : {TwistedFace::warping_free, TwistedFace::warping_held}) {
+    const double c = face_twist_compliance(mesh, {softarm::test::neo_hookean(mu, 1000 * mu)}, ElementIntegration::full,
+                                           "z1", "z0", face);
+    INFO("compliance " << c << " rad/(N mm), exact " << exact);
+    CHECK(std::abs(c / exact - 1) < 1e-4);
+  }
+}
+
+TEST_CASE("Bonded end cells twist a short 3CA as its 3D model does, where the cells' GJ alone does not", "[twist]") {
+  // Seven ring pitches of the thesis 3CA's distal section (untapered, r = 9 mm, caps 2.25 mm),
+  // bonded at both ends: the top held, the bottom on a rigid connector turned about the axis.
+  // The cells' GJ is Saint-Venant's (sections warping freely); the bonded faces cannot warp and
+  // the caps are solid, so the whole 3CA is stiffer. Measured (full models, level 2's layers): the
+  // 3D model 1.1471e-3 rad/(N mm); the rod on its cells' GJ alone +3.78 %; with end cells through
+  // 1, 2 and 3 rings +0.92 %, +0.42 %, +0.19 %.
+  const TcaSceneSpec spec = softarm::test::untapered_3ca(7, 2, 2);
+  const double solid = tca_twist_compliance(spec);
+  REQUIRE(solid > 0);
+  TcaSceneSpec rest = spec;
+  rest.chamber_pressure_kPa = {0, 0, 0};
+  rest.output_pressures_kPa.clear();
+  SpatialCellPiece piece;
+  piece.length_mm = spec.design.actuator.length_mm;
+  piece.cap_mm = spec.design.actuator.end_cap_thickness_mm;
+  for (int ring : cell_rod_rings(spec.design.actuator.ring_count)) {
+    piece.cells.push_back(spatial_cell_table(run_tca_cell(rest, ring), 0));
+    piece.cells.back().torsion_compliance_per_Nmm2 = 1 / cell_torsion_stiffness(rest, ring);
+  }
+  SpatialCellRodSpec rod;
+  rod.pieces = {piece};
+  const double cells_only = spatial_cell_rod_twist_compliance(rod, 0);
+  std::vector<double> error;
+  for (int rings : {2, 3}) {
+    SpatialCellRodSpec with = rod;
+    for (const TcaEnd end : {TcaEnd::bottom, TcaEnd::top}) {
+      SpatialEndTable t;
+      t.at_top = end == TcaEnd::top;
+      t.length_mm = rings * spec.design.actuator.pitch();
+      t.level = {0, 1};
+      t.rotation_rad.assign(2, Eigen::Vector2d::Zero());
+      t.elongation_mm = {0, 0};
+      t.twist_compliance_per_Nmm = end_cell_twist_compliance(spec, end, rings);
+      REQUIRE(t.twist_compliance_per_Nmm > 0);
+      with.pieces[0].ends.push_back(t);
+    }
+    error.push_back(spatial_cell_rod_twist_compliance(with, 0) / solid - 1);
+  }
+  INFO("3D " << solid << " rad/(N mm); the rod: cells alone " << 100 * (cells_only / solid - 1)
+             << " %, end cells through 2 rings " << 100 * error[0] << " %, through 3 " << 100 * error[1] << " %");
+  CHECK(cells_only / solid - 1 > 0.03);
+  CHECK(std::abs(error[0]) < 0.01);
+  CHECK(std::abs(error[1]) < std::abs(error[0]));
+}
