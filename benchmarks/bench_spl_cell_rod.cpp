@@ -1,10 +1,11 @@
 // The SPL pose on the spatial cell rod (fem/scenes/spl_cell_rod.hpp): its cells' cost and
 // the tip's path, and with --compare the joints against a 3D run's summary.json (the
-// fidelity ladder's reference: configs/convergence/spl_thesis_pose_axial3.json).
+// fidelity ladder's reference, configs/convergence/spl_thesis_pose_axial3.json, whose joints
+// benchmarks/data/spl_thesis_pose_axial3_joints.json keeps).
 //
 //   bench_spl_cell_rod [config] [--full] [--cell-levels N] [--threads N] [--compare summary.json]
 //                      [--torsion-scales 1,0.5,2] [--tables] [--save-cells F | --load-cells F] [--rigid-caps]
-//                      [--axial-level N] [--end-rings N] [--moments]
+//                      [--axial-level N] [--end-rings N] [--moments] [--cells-torsion]
 //   --full: full-model cells even where a segment's pressures allow a half model
 //   --save-cells F / --load-cells F: keep the cells' tables in a JSON file / pose from one (no cells run)
 //   --tables: print every cell's table (stretch, curvature vector, compliances) at its outputs
@@ -13,6 +14,8 @@
 //   --moments: the moment (section frame) and tension the rod puts on each cell at full pressure,
 //     for bench_tca_cell --moment-Nmm (how far each cell's tangent compliance carries)
 //   --rigid-caps: pose without the end cells' tables (the cells' response up to rigid caps)
+//   --cells-torsion: pose with the cells' GJ over the bonded ends too (their end cells' twist compliance
+//     left out, as before that was measured: fem/scenes/twist_compliance.hpp)
 //   --torsion-scales: pose again with each segment's GJ times each factor (the cells once)
 #include <algorithm>
 #include <chrono>
@@ -54,7 +57,8 @@ nlohmann::json to_json(const fem::SpatialCellRodSpec& rod) {
       nlohmann::json turn = nlohmann::json::array();
       for (const auto& v : e.rotation_rad) turn.push_back({v.x(), v.y()});
       ends.push_back({{"at_top", e.at_top}, {"length_mm", e.length_mm}, {"level", e.level},
-                      {"rotation_rad", turn}, {"elongation_mm", e.elongation_mm}});
+                      {"rotation_rad", turn}, {"elongation_mm", e.elongation_mm},
+                      {"twist_compliance_per_Nmm", e.twist_compliance_per_Nmm}});
     }
     pieces.push_back({{"length_mm", p.length_mm}, {"cap_mm", p.cap_mm}, {"mass_kg", p.mass_kg}, {"cells", cells}, {"ends", ends}});
   }
@@ -90,6 +94,7 @@ void read_tables(const nlohmann::json& j, fem::SpatialCellRodSpec& rod) {
       t.length_mm = e.at("length_mm");
       t.level = e.at("level").get<std::vector<double>>();
       t.elongation_mm = e.at("elongation_mm").get<std::vector<double>>();
+      t.twist_compliance_per_Nmm = e.value("twist_compliance_per_Nmm", 0.0);
       for (const auto& v : e.at("rotation_rad")) t.rotation_rad.emplace_back(v[0].get<double>(), v[1].get<double>());
       piece.ends.push_back(t);
     }
@@ -100,7 +105,7 @@ void read_tables(const nlohmann::json& j, fem::SpatialCellRodSpec& rod) {
 
 int main(int argc, char** argv) {
   std::string config = "configs/spl_thesis_pose.json", compare, save_cells, load_cells;
-  bool full = false, tables = false, rigid_caps = false, moments = false;
+  bool full = false, tables = false, rigid_caps = false, moments = false, cells_torsion = false;
   int cell_levels = 16, axial_level = 0, end_rings = -1;
   std::vector<double> torsion_scales;
   for (int i = 1; i < argc; ++i) {
@@ -110,6 +115,7 @@ int main(int argc, char** argv) {
     else if (a == "--tables") tables = true;
     else if (a == "--rigid-caps") rigid_caps = true;
     else if (a == "--moments") moments = true;
+    else if (a == "--cells-torsion") cells_torsion = true;
     else if (a == "--axial-level" && i + 1 < argc) axial_level = std::atoi(argv[++i]);
     else if (a == "--end-rings" && i + 1 < argc) end_rings = std::atoi(argv[++i]);
     else if (a == "--save-cells" && i + 1 < argc) save_cells = argv[++i];
@@ -156,8 +162,18 @@ int main(int argc, char** argv) {
         std::printf("segment %zu %s end, %.2f mm: at level %.3f turns (%.5f, %.5f) rad, elongates %.4f mm\n", p / 2 + 1,
                     e.at_top ? "top" : "bottom", e.length_mm, e.level.back(), e.rotation_rad.back().x(),
                     e.rotation_rad.back().y(), e.elongation_mm.back());
+  for (std::size_t p = 0; p < cells.rod.pieces.size(); ++p)
+    for (const auto& e : cells.rod.pieces[p].ends)
+      if (e.twist_compliance_per_Nmm > 0)
+        std::printf("segment %zu %s end: twists %.4e rad/(N·mm) at rest, its cells over the same length %.4e\n", p / 2 + 1,
+                    e.at_top ? "top" : "bottom", e.twist_compliance_per_Nmm,
+                    e.length_mm * cells.rod.pieces[p].cells[e.at_top ? cells.rod.pieces[p].cells.size() - 1 : 0]
+                                      .torsion_compliance_per_Nmm2);
   if (rigid_caps)
     for (auto& p : cells.rod.pieces) p.ends.clear();
+  if (cells_torsion)
+    for (auto& p : cells.rod.pieces)
+      for (auto& e : p.ends) e.twist_compliance_per_Nmm = 0;
   for (int n = 0; n < 3; ++n) {
     std::printf("segment %d: %s model, rings", n + 1, cells.half_model[n] ? "half" : "full");
     for (int ring : cells.rings[n]) std::printf(" %d", ring);
@@ -230,7 +246,7 @@ int main(int argc, char** argv) {
       const Eigen::AngleAxisd a(rel);
       std::printf("segment %zu bends %7.2f° about (%6.3f, %6.3f, %6.3f) in its top frame", j / 2 + 1,
                   a.angle() * 57.29577951308232, a.axis().x(), a.axis().y(), a.axis().z());
-      if (!reference.is_null()) {
+      if (!reference.is_null() && reference["joints"][j].contains("rotation_matrix")) {
         Eigen::Matrix3d top, bottom;
         for (int i = 0; i < 3; ++i)
           for (int k = 0; k < 3; ++k) {
@@ -250,6 +266,13 @@ int main(int argc, char** argv) {
       const double tip = std::hypot(p.x() - q[0].get<double>(), p.y() - q[1].get<double>(), p.z() - q[2].get<double>());
       std::printf("tip %.1f mm off, %.1f %% of the reference tip's %.0f mm travel; joints %.1f mm off on average\n", tip,
                   100 * tip / travel, travel, sum / count);
+      // The reference's own estimates of the converged tip, where its file keeps them
+      // (benchmarks/data/spl_thesis_pose_axial3_joints.json).
+      if (reference.contains("richardson_tip_mm"))
+        for (const auto& [order, q] : reference["richardson_tip_mm"].items())
+          std::printf("tip %.1f mm off the reference's Richardson tip at %s\n",
+                      std::hypot(p.x() - q[0].get<double>(), p.y() - q[1].get<double>(), p.z() - q[2].get<double>()),
+                      order.c_str());
     }
   }
   return rc;

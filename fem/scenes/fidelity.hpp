@@ -47,7 +47,7 @@ const FidelityLadder& fidelity_ladder(const std::string& scene);
 
 /// The "target" of fidelity "fast": the cheapest model of the ladder, whatever its measured error
 /// (which is printed with it). A percentage would pick a slow model where the reduced one misses it:
-/// the SPL's spatial rod is 44 % off, its cell rod 5.0 % at ~4 minutes, and every 3D rung but a locking
+/// the SPL's spatial rod is 44 % off, its cell rod 4.6 % at ~4 minutes, and every 3D rung but a locking
 /// preview takes 17 to 96 minutes.
 inline constexpr double kCheapestModel = std::numeric_limits<double>::infinity();
 

@@ -7,6 +7,7 @@
 #include "fem/core/parallel.hpp"
 #include "fem/reduced/rod_layout.hpp"
 #include "fem/scenes/tca_cell.hpp"
+#include "fem/scenes/twist_compliance.hpp"
 
 namespace softarm::fem {
 namespace {
@@ -95,12 +96,15 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::functio
   // The end cells, then the cells and each one's torsion at rest, side by side (parallel_tasks).
   const int end_count = static_cast<int>(end_jobs.size());
   std::vector<TcaEndCellResult> ends(end_jobs.size());
+  std::vector<double> end_twist(end_jobs.size(), 0.0);  // bonded ends' twist compliance at rest
   std::vector<TcaCellResult> cells(jobs.size());
   std::vector<double> torsion(jobs.size());
   parallel_tasks(end_count + static_cast<int>(jobs.size()), [&](int i) {
     if (i < end_count) {
       const EndJob& e = end_jobs[i];
       ends[i] = run_tca_end_cell(scenes[e.segment], e.end, out.end_rings[e.segment], e.face);
+      if (e.face == EndFaceSupport::bonded)
+        end_twist[i] = end_cell_twist_compliance(scenes[e.segment], e.end, out.end_rings[e.segment]);
       return;
     }
     i -= end_count;
@@ -112,10 +116,14 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::functio
     const auto& p = scenes[e.segment].chamber_pressure_kPa;
     out.largest_end_cell_dofs = std::max(out.largest_end_cell_dofs, ends[i].dofs);
     out.outcomes.push_back(ends[i].path.outcome);
-    if (ends[i].path.outcome != PathOutcome::completed)
-      out.notes += " (segment " + std::to_string(e.segment + 1) + ", " + (e.end == TcaEnd::top ? "top" : "bottom") +
-                   " end: " + ends[i].path.diagnosis + ")";
+    const std::string name = "segment " + std::to_string(e.segment + 1) + ", " + (e.end == TcaEnd::top ? "top" : "bottom") + " end";
+    if (ends[i].path.outcome != PathOutcome::completed) out.notes += " (" + name + ": " + ends[i].path.diagnosis + ")";
+    if (std::isnan(end_twist[i])) {
+      out.failure = name + ": the end cell's tangent at rest is not positive definite (no torsional stiffness)";
+      return out;
+    }
     out.rod.pieces[e.piece].ends.push_back(spatial_end_table(ends[i], *std::max_element(p.begin(), p.end())));
+    out.rod.pieces[e.piece].ends.back().twist_compliance_per_Nmm = end_twist[i];
   }
   out.end_cells = end_count;
   for (std::size_t i = 0; i < jobs.size(); ++i) {

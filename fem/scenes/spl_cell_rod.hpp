@@ -10,7 +10,9 @@
 // two equal ones, none), else the full one; they run side by side, one thread each.
 // Each segment's ends are end cells through the rung's end rings (tca_end_cell.hpp), where it
 // has more than twice as many rings: its top bonded to the connector above, its bottom to the
-// one below, the tip's free; their turn and elongation replace the cells' over their length.
+// one below, the tip's free; their turn and elongation replace the cells' over their length,
+// and a bonded end's twist at rest (twist_compliance.hpp: its face held from warping, its cap
+// solid) the cells' 1/GJ there (a free end carries no torque worth measuring: the tip's).
 #include <array>
 #include <functional>
 #include <string>

@@ -13,6 +13,7 @@
 #include "fem/forms/plane_face_form.hpp"
 #include "fem/scenes/cell_supports.hpp"
 #include "fem/scenes/fidelity.hpp"
+#include "fem/scenes/twist_compliance.hpp"
 #include "fem/mesh/tca_mesher.hpp"
 #include "fem/solver/linear_solver.hpp"
 #include "fem/solver/load_stepper.hpp"
@@ -405,12 +406,15 @@ CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
   std::vector<TcaCellResult> cells(out.rings.size());
   std::vector<TcaEndCellResult> ends(end_count);
   std::vector<double> torsion(out.rings.size(), 0.0);
+  std::vector<double> end_twist(end_count, 0.0);  // the spatial rod's bonded end: its twist compliance at rest
   // The cells side by side, one thread each (parallel_tasks); the larger end cells first.
   const auto t_cells = std::chrono::steady_clock::now();
   parallel_tasks(end_count + static_cast<int>(out.rings.size()), [&](int i) {
     if (i < end_count) {
       const TcaEnd end = i == 0 ? TcaEnd::bottom : TcaEnd::top;
       ends[i] = run_tca_end_cell(spec, end, out.end_rings, tca_scene_end_support(end));
+      if (out.spatial && tca_scene_end_support(end) == EndFaceSupport::bonded)
+        end_twist[i] = end_cell_twist_compliance(spec, end, out.end_rings);
       return;
     }
     i -= end_count;
@@ -436,7 +440,14 @@ CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
       piece.cells.push_back(spatial_cell_table(cells[i], peak));
       piece.cells.back().torsion_compliance_per_Nmm2 = 1 / torsion[i];
     }
-    for (const auto& e : ends) piece.ends.push_back(spatial_end_table(e, peak));
+    for (std::size_t i = 0; i < ends.size(); ++i) {
+      if (std::isnan(end_twist[i])) {
+        out.diagnosis = "the clamped end cell has no torsional stiffness (its tangent at rest is not positive definite)";
+        return out;
+      }
+      piece.ends.push_back(spatial_end_table(ends[i], peak));
+      piece.ends.back().twist_compliance_per_Nmm = end_twist[i];
+    }
     spatial.pieces = {piece};
     spatial.gravity_m_s2 = spec.gravity_m_s2;
   }

@@ -126,7 +126,8 @@ std::string no_end_cells_note(int asked, int ring_count);
 /// plane (a mirror plane through the axis) take the planar rod (cell_rod.hpp), any others the
 /// spatial one (spatial_cell_rod.hpp) with the cells' torsion; the bending angle is then the tip
 /// axis' tilt from rest, signed by the pressures' bend direction. Both rods take both ends as end
-/// cells through spec.cell_rod_end_rings rings where the 3CA has more than twice as many.
+/// cells through spec.cell_rod_end_rings rings where the 3CA has more than twice as many; the
+/// spatial rod takes the clamped end's twist at rest too (twist_compliance.hpp).
 struct CellRodTcaResult {
   std::vector<int> rings;
   int end_rings = 0;                           // the end cells' (0: none, rigid caps)
