@@ -126,8 +126,23 @@ int simulate_cell_rod_spl(const fem::SceneConfig& config) {
       std::cout << "; end cells through " << c.end_rings[n] << " rings (top bonded to its connector, bottom "
                 << (fem::spl_end_support(n, fem::TcaEnd::bottom) == fem::EndFaceSupport::bonded ? "bonded to its connector)"
                                                                                                  : "free: the tip)");
+    nlohmann::json segment = {{"segment", n + 1}, {"rings", c.rings[n]}, {"half_model", c.half_model[n]},
+                              {"end_rings", c.end_rings[n]}};
+    // The segment's twist per torque at rest as the rod integrates it, with its bonded ends' own
+    // twist (fem/scenes/twist_compliance.hpp) and on its cells' GJ alone: what the ends change.
+    const std::size_t piece = 2 * n + 1;
+    if (c.failure.empty() && piece < c.rod.pieces.size()) {
+      fem::SpatialCellRodSpec cells_alone = c.rod;
+      for (auto& e : cells_alone.pieces[piece].ends) e.twist_compliance_per_Nmm = 0;
+      const double with_ends = fem::spatial_cell_rod_twist_compliance(c.rod, piece);
+      const double alone = fem::spatial_cell_rod_twist_compliance(cells_alone, piece);
+      std::cout << std::setprecision(4) << "; twist at rest " << with_ends << " rad/(N·mm) (cells' GJ alone " << alone << ")";
+      std::cout.unsetf(std::ios::floatfield);
+      segment["twist_compliance_at_rest_rad_per_Nmm"] = with_ends;
+      segment["twist_compliance_cells_alone_rad_per_Nmm"] = alone;
+    }
     std::cout << "\n";
-    cells.push_back({{"segment", n + 1}, {"rings", c.rings[n]}, {"half_model", c.half_model[n]}, {"end_rings", c.end_rings[n]}});
+    cells.push_back(segment);
   }
   if (!c.end_cells_note.empty()) std::cout << "(" << c.end_cells_note << ")\n";
   std::cout << std::setprecision(3) << c.cells << " cells (up to " << c.largest_cell_dofs << " dofs) and " << c.end_cells

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 namespace {
 
 struct RunResult {
@@ -136,12 +138,23 @@ TEST_CASE("simulate on the SPL config's own model: the cell rod, its cells and j
   CHECK(r.exit_code == 0);
   CHECK(r.output.find("cell rod: 3 ring-pitch cells per segment") != std::string::npos);
   CHECK(r.output.find("segment 3: rings 1 15 30, half model") != std::string::npos);
+  CHECK(r.output.find("twist at rest") != std::string::npos);  // each segment's, with its bonded ends'
   CHECK(r.output.find("fixed_point") != std::string::npos);
   CHECK(r.output.find("segment 3 bottom (tip)") != std::string::npos);
   CHECK(r.output.find("outcome: completed") != std::string::npos);
   CHECK(r.output.find("nan") == std::string::npos);
   std::ifstream summary("/tmp/softarm_cli_test/spl_cell/summary.json");
-  CHECK(summary.good());
+  REQUIRE(summary.good());
+  // Every segment's top is bonded, and so are the bottoms but the tip's: each bonded end twists less
+  // than its cells over the same length (its face cannot warp, its cap is solid).
+  const nlohmann::json j = nlohmann::json::parse(summary);
+  REQUIRE(j.at("cells").size() == 3);
+  for (const auto& segment : j.at("cells")) {
+    INFO("segment " << segment.at("segment"));
+    const double with_ends = segment.at("twist_compliance_at_rest_rad_per_Nmm");
+    CHECK(with_ends > 0);
+    CHECK(with_ends < segment.at("twist_compliance_cells_alone_rad_per_Nmm").get<double>());
+  }
 }
 
 TEST_CASE("simulate --fidelity fast poses the thesis SPL by the spatial rod", "[cli]") {
