@@ -122,6 +122,7 @@ double spatial_cell_rod_length_mm(const SpatialCellRodSpec& spec) {
 }
 
 double spatial_cell_rod_twist_compliance(const SpatialCellRodSpec& spec, std::size_t piece) {
+  if (piece >= spec.pieces.size()) return std::nan("");
   std::vector<IntervalSection> sec;
   std::vector<int> first;
   if (std::string why = sections_at(spec, 0.0, sec, first); !why.empty()) return std::nan("");

@@ -85,7 +85,8 @@ SpatialCellRodState solve_spatial_cell_rod(const SpatialCellRodSpec& spec, doubl
                                            const SpatialCellRodState* start = nullptr);
 
 /// The twist per unit torque (rad/(N·mm)) across piece `piece` at rest, as the rod integrates it:
-/// Σ ΔZ / GJ over its intervals, the end tables' twist compliances included (a connector's: 0).
+/// Σ ΔZ / GJ over its intervals, the end tables' twist compliances included (a connector's: 0);
+/// NaN for a piece the spec does not have.
 double spatial_cell_rod_twist_compliance(const SpatialCellRodSpec& spec, std::size_t piece);
 
 /// Total length, and mass (the cells' smeared mass and the connectors'; the tip mass excluded).
