@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "benchmarks/bench_scene.hpp"
-#include "fem/reduced/spatial_cell_rod.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
 #include "fem/scenes/tca_cell.hpp"
@@ -58,62 +57,29 @@ int main(int argc, char** argv) {
   std::printf("%s%s: %d rings, length %.2f mm, cap %.2f mm, pitch %.4f mm\n", config.c_str(),
               segment ? (" segment " + std::to_string(segment)).c_str() : "", n, spec.design.actuator.length_mm,
               spec.design.actuator.end_cap_thickness_mm, spec.design.actuator.pitch());
-  // The cells at rest: their GJ (the rod's tables need a rest state only).
-  fem::SpatialCellPiece piece;
-  piece.length_mm = spec.design.actuator.length_mm;
-  piece.cap_mm = spec.design.actuator.end_cap_thickness_mm;
-  fem::TcaSceneSpec rest = spec;
-  rest.chamber_pressure_kPa = {0, 0, 0};
-  rest.output_pressures_kPa.clear();
-  for (int ring : fem::cell_rod_rings(n)) {
-    auto t0 = std::chrono::steady_clock::now();
-    const fem::TcaCellResult cell = fem::run_tca_cell(rest, ring);
-    piece.cells.push_back(fem::spatial_cell_table(cell, 0));
-    const double gj = fem::cell_torsion_stiffness(rest, ring);
-    piece.cells.back().torsion_compliance_per_Nmm2 = 1 / gj;
-    std::printf("cell about ring %d (z = %.2f mm): GJ %.1f N·mm² (%.1f s)\n", ring, cell.ring_centre_z_mm, gj,
-                seconds_since(t0));
-  }
-  fem::SpatialCellRodSpec rod;
-  rod.pieces = {piece};
-  const double cells_only = fem::spatial_cell_rod_twist_compliance(rod, 0);
-  double solid = 0;
-  if (whole) {
-    auto t0 = std::chrono::steady_clock::now();
-    solid = fem::tca_twist_compliance(spec);
-    std::printf("3D, bonded at both ends (full model): %.6e rad/(N·mm), GJ_eff = L/C = %.1f N·mm² (%.1f s)\n", solid,
-                piece.length_mm / solid, seconds_since(t0));
-  }
-  std::printf("%-28s %14s %12s %10s\n", "rod", "C_rad_per_Nmm", "GJ_eff_Nmm2", "vs_3D");
-  const auto row = [&](const std::string& name, double c) {
-    std::printf("%-28s %14.6e %12.1f %10s\n", name.c_str(), c, piece.length_mm / c,
-                solid > 0 ? (std::to_string(100 * (c / solid - 1)).substr(0, 6) + " %").c_str() : "-");
-  };
-  row("cells' GJ alone", cells_only);
+  std::vector<int> end_rings = {0};
   std::stringstream list(rings_arg);
   for (std::string item; std::getline(list, item, ',');) {
     const int rings = std::atoi(item.c_str());
-    if (fem::end_cell_rings(rings, n) == 0) {
-      std::printf("ends through %d rings: %s\n", rings, fem::no_end_cells_note(rings, n).c_str());
-      continue;
-    }
-    fem::SpatialCellRodSpec with = rod;
-    auto t0 = std::chrono::steady_clock::now();
-    for (const fem::TcaEnd end : {fem::TcaEnd::bottom, fem::TcaEnd::top}) {
-      fem::SpatialEndTable t;
-      t.at_top = end == fem::TcaEnd::top;
-      t.length_mm = rings * spec.design.actuator.pitch();
-      t.level = {0, 1};
-      t.rotation_rad = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
-      t.elongation_mm = {0, 0};
-      t.twist_compliance_per_Nmm = fem::end_cell_twist_compliance(spec, end, rings);
-      std::printf("  %s end through %d rings (%.2f mm): %.6e rad/(N·mm), cells over the same length %.6e\n",
-                  t.at_top ? "top" : "bottom", rings, t.length_mm, t.twist_compliance_per_Nmm,
-                  t.length_mm / (1 / piece.cells[t.at_top ? piece.cells.size() - 1 : 0].torsion_compliance_per_Nmm2));
-      with.pieces[0].ends.push_back(t);
-    }
-    row("ends through " + std::to_string(rings) + " rings (" + std::to_string(seconds_since(t0)).substr(0, 5) + " s)",
-        fem::spatial_cell_rod_twist_compliance(with, 0));
+    if (fem::end_cell_rings(rings, n) > 0) end_rings.push_back(rings);
+    else std::printf("ends through %d rings: %s\n", rings, fem::no_end_cells_note(rings, n).c_str());
+  }
+  double solid = 0;
+  if (whole) {
+    const auto t0 = std::chrono::steady_clock::now();
+    solid = fem::tca_twist_compliance(spec);
+    std::printf("3D, bonded at both ends (full model): %.6e rad/(N·mm), GJ_eff = L/C = %.1f N·mm² (%.1f s)\n", solid,
+                spec.design.actuator.length_mm / solid, seconds_since(t0));
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<double> rod = fem::tca_rod_twist_compliances(spec, end_rings);
+  std::printf("the rod's cells and end cells at rest: %.1f s\n%-28s %14s %12s %10s\n", seconds_since(t0), "rod",
+              "C_rad_per_Nmm", "GJ_eff_Nmm2", "vs_3D_pct");
+  for (std::size_t i = 0; i < rod.size(); ++i) {
+    const std::string name = end_rings[i] == 0 ? "cells' GJ alone" : "ends through " + std::to_string(end_rings[i]) + " rings";
+    std::printf("%-28s %14.6e %12.1f", name.c_str(), rod[i], spec.design.actuator.length_mm / rod[i]);
+    if (solid > 0) std::printf(" %10.3f", 100 * (rod[i] / solid - 1));
+    std::printf("\n");
   }
   return 0;
 }

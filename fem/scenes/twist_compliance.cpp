@@ -4,7 +4,9 @@
 
 #include "fem/assembly/energy_problem.hpp"
 #include "fem/forms/elastic_form.hpp"
+#include "fem/reduced/spatial_cell_rod.hpp"
 #include "fem/scenes/solid_scene_support.hpp"
+#include "fem/scenes/tca_cell.hpp"
 #include "fem/solver/linear_solver.hpp"
 
 namespace softarm::fem {
@@ -61,6 +63,37 @@ double end_cell_twist_compliance(const TcaSceneSpec& spec, TcaEnd end, int rings
   const bool top = end == TcaEnd::top;
   return face_twist_compliance(mesh, tca_part_materials(spec), spec.integration, top ? "top" : "bottom",
                                top ? "bottom" : "top", TwistedFace::warping_free);
+}
+
+std::vector<double> tca_rod_twist_compliances(const TcaSceneSpec& spec, const std::vector<int>& end_rings) {
+  TcaSceneSpec rest = spec;
+  rest.chamber_pressure_kPa = {0, 0, 0};
+  rest.output_pressures_kPa.clear();
+  SpatialCellPiece piece;
+  piece.length_mm = spec.design.actuator.length_mm;
+  piece.cap_mm = spec.design.actuator.end_cap_thickness_mm;
+  for (int ring : cell_rod_rings(spec.design.actuator.ring_count)) {
+    piece.cells.push_back(spatial_cell_table(run_tca_cell(rest, ring), 0));
+    piece.cells.back().torsion_compliance_per_Nmm2 = 1 / cell_torsion_stiffness(rest, ring);
+  }
+  std::vector<double> out;
+  for (int rings : end_rings) {
+    SpatialCellRodSpec rod;
+    rod.pieces = {piece};
+    for (const TcaEnd end : {TcaEnd::bottom, TcaEnd::top}) {
+      if (rings <= 0) break;
+      SpatialEndTable t;  // the end's twist only: no turn, no elongation at rest
+      t.at_top = end == TcaEnd::top;
+      t.length_mm = rings * spec.design.actuator.pitch();
+      t.level = {0, 1};
+      t.rotation_rad.assign(2, Eigen::Vector2d::Zero());
+      t.elongation_mm = {0, 0};
+      t.twist_compliance_per_Nmm = end_cell_twist_compliance(spec, end, rings);
+      rod.pieces[0].ends.push_back(t);
+    }
+    out.push_back(spatial_cell_rod_twist_compliance(rod, 0));
+  }
+  return out;
 }
 
 double tca_twist_compliance(const TcaSceneSpec& spec) {

@@ -44,6 +44,11 @@ double face_twist_compliance(const Mesh& mesh, const std::vector<Material>& part
 /// end's length in place of its cells' 1/GJ (spatial_cell_rod.hpp, SpatialEndTable).
 double end_cell_twist_compliance(const TcaSceneSpec& spec, TcaEnd end, int rings);
 
+/// The spatial cell rod's twist compliance (rad/(N·mm)) of spec's 3CA at rest, as it integrates
+/// 1/GJ: on its cells' GJ (tca_cell.hpp; cells about cell_rod_rings, run once) for each entry 0 of
+/// `end_rings`, and with both ends as bonded end cells through that many rings for each n > 0.
+std::vector<double> tca_rod_twist_compliances(const TcaSceneSpec& spec, const std::vector<int>& end_rings);
+
 /// spec's whole 3CA (full model) bonded at both ends: the top face held, the bottom face on a
 /// rigid connector that turns (warping held). The check of the rod's torsion with end cells.
 double tca_twist_compliance(const TcaSceneSpec& spec);
