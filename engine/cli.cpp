@@ -12,6 +12,7 @@
 #include "engine/fidelity_report.hpp"
 #include "engine/material_command.hpp"
 #include "engine/reduced_simulate.hpp"
+#include "engine/scene_checkpoint.hpp"
 #include "engine/study/study_command.hpp"
 #include "studies/study_spec.hpp"
 #include "engine/rra_report.hpp"
@@ -26,26 +27,37 @@
 namespace softarm::engine {
 namespace {
 
-int simulate_tca(const fem::SceneConfig& config) {
+void print_checkpoint(const fem::PathCheckpoint& checkpoint) {
+  std::cout << "checkpoint: " << checkpoint.file
+            << " (every converged step as it comes; a rerun resumes from the last one, --fresh starts over)\n";
+}
+
+int simulate_tca(fem::SceneConfig config, const fem::PathCheckpoint& checkpoint) {
   const fem::ModelChoice model = fem::choose_tca_model(config.tca);
   std::cout << "model: " << model.name << " (" << model.reason << ")\n";
+  print_checkpoint(checkpoint);
+  config.tca.checkpoint = checkpoint;
   TcaCurveWriter writer(config.output.directory, std::cout);
   const auto result = fem::run_tca_scene(config.tca, [&](const fem::TcaState& s) { writer.add(s); });
+  if (const std::string note = checkpoint_note(checkpoint, result.path); !note.empty()) std::cout << note << "\n";
   write_tca_summary(config, result, std::cout);
   return result.path.outcome == fem::PathOutcome::stalled ? 1 : 0;
 }
 
-int simulate_spl(const fem::SceneConfig& config) {
+int simulate_spl(fem::SceneConfig config, const fem::PathCheckpoint& checkpoint) {
   const fem::ModelChoice model = fem::choose_spl_model(config.spl);
   std::cout << "model: " << model.name << " (" << model.reason << ")\n";
+  print_checkpoint(checkpoint);
+  config.spl.checkpoint = checkpoint;
   SplCurveWriter writer(config.output.directory, std::cout);
   const auto result = fem::run_spl_scene(config.spl, [&](const fem::SplState& s) { writer.add(s); });
+  if (const std::string note = checkpoint_note(checkpoint, result.path); !note.empty()) std::cout << note << "\n";
   write_spl_summary(config, result, std::cout);
   return result.path.outcome == fem::PathOutcome::stalled ? 1 : 0;
 }
 
 int simulate(const std::string& file, const std::string& output_override, int mesh_level_override,
-             int element_order_override, const std::string& fidelity_override) {
+             int element_order_override, const std::string& fidelity_override, bool fresh) {
   fem::SceneConfig config = fem::load_scene_config(file);
   if (!output_override.empty()) config.output.directory = output_override;
   if (!fidelity_override.empty()) {
@@ -70,8 +82,14 @@ int simulate(const std::string& file, const std::string& output_override, int me
   std::cout << "softarm simulate: " << file << " (scene " << config.scene << ", mesh level " << config.mesh_level()
             << (axial_level != config.mesh_level() ? ", axial level " + std::to_string(axial_level) : "")
             << ", element order " << config.element_order() << ", threads " << fem::thread_count() << ")\n";
-  if (config.scene == "tca") return simulate_tca(config);
-  if (config.scene == "spl") return simulate_spl(config);
+  if (config.scene == "tca" || config.scene == "spl") {
+    // The 3D models run for minutes to hours: their paths are kept as they go.
+    const std::string overrides = "mesh_level " + std::to_string(mesh_level_override) + ", element_order " +
+                                  std::to_string(element_order_override) + ", fidelity " + fidelity_override;
+    const fem::PathCheckpoint checkpoint =
+        scene_checkpoint(fem::load_json_file(file), overrides, config.output.directory, fresh);
+    return config.scene == "tca" ? simulate_tca(config, checkpoint) : simulate_spl(config, checkpoint);
+  }
   RraCurveWriter writer(config.output.directory, std::cout);
   const auto result = fem::run_rra_scene(config.rra, [&](const fem::RraCurvePoint& p) { writer.add(p); });
   write_rra_summary(config, result, std::cout);
@@ -192,6 +210,9 @@ int run_cli(int argc, char** argv) {
   sim->add_option("--fidelity", fidelity_choice,
                   "fast, balanced or accurate: the fidelity ladder picks the model (overrides the config's mesh and model.fidelity)")
       ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
+  bool simulate_fresh = false;
+  sim->add_flag("--fresh", simulate_fresh,
+                "3D scenes: discard the converged steps of an earlier run in the output directory instead of resuming");
 
   std::string deck_path = "out/scene.inp";
   double deck_pressure_kPa = 0.0;
@@ -245,7 +266,7 @@ int run_cli(int argc, char** argv) {
   }
   if (threads > 0) fem::set_thread_count(threads);
   try {
-    if (*sim) return simulate(scene_file, output_dir, mesh_level, element_order, fidelity_choice);
+    if (*sim) return simulate(scene_file, output_dir, mesh_level, element_order, fidelity_choice, simulate_fresh);
     if (*design) return run_design(design_file, design_overrides);
     if (*study) return run_study_command(study_options);
     if (*fidelity) {

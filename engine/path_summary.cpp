@@ -6,6 +6,7 @@ nlohmann::json path_solver_json(const fem::PressurePathResult& path) {
   return {{"load_steps", path.path.stats.steps},
           {"newton_iterations", path.path.stats.newton_iterations},
           {"cutbacks", path.path.stats.cutbacks},
+          {"resumed_states", path.resumed_states},
           {"factorizations", path.factorizations},
           {"indefinite_tangents_lu", path.lu_fallbacks},
           {"shifted_cholesky_attempts", path.shifted_factorizations},

@@ -2,6 +2,7 @@
 // and a message that names the offending JSON field — never crash, hang or
 // print NaN.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -172,4 +173,47 @@ TEST_CASE("simulate --fidelity fast poses the thesis SPL by the spatial rod", "[
   const auto both = run_softarm("simulate " + config + " --fidelity fast --mesh-level 2");
   CHECK(both.exit_code == 2);
   CHECK(both.output.find("--fidelity") != std::string::npos);
+}
+
+TEST_CASE("simulate keeps a 3D path as it goes: a rerun resumes it, a changed scene or --fresh starts over", "[cli][checkpoint]") {
+  const auto config = [](int pressure_kPa) {
+    return R"({"scene": "tca", "geometry": {"length_mm": 32, "bottom_radius_mm": 9, "top_radius_mm": 9.6,
+      "wall_thickness_normalised": 0.466, "end_cap_thickness_normalised": 0.25, "ring_count_normalised": 0.375,
+      "ring_thickness_normalised": 0.4}, "mesh": {"level": 1, "element_order": 1},
+      "load": {"chamber_pressures_kPa": [0, )" + std::to_string(pressure_kPa) + ", " + std::to_string(pressure_kPa) +
+           R"(], "output_count": 3}})";
+  };
+  const std::string dir = "/tmp/softarm_cli_test/checkpoint";
+  const auto curve = [&] {
+    std::ifstream in(dir + "/curve.csv");
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  };
+  const auto file = write_config("checkpoint.json", config(60));
+  const auto first = run_softarm("simulate " + file + " -o " + dir + " --fresh");
+  INFO(first.output);
+  REQUIRE(first.exit_code == 0);
+  CHECK(first.output.find("checkpoint: " + dir + "/path_checkpoint.bin") != std::string::npos);
+  CHECK(first.output.find("resumed") == std::string::npos);
+  const std::string first_curve = curve();
+  REQUIRE(std::count(first_curve.begin(), first_curve.end(), '\n') >= 4);  // a header, rest and 3 outputs
+
+  const auto again = run_softarm("simulate " + file + " -o " + dir);
+  INFO(again.output);
+  CHECK(again.exit_code == 0);
+  CHECK(again.output.find("resumed ") != std::string::npos);
+  CHECK(curve() == first_curve);  // the same states, replayed
+  std::ifstream summary(dir + "/summary.json");
+  CHECK(nlohmann::json::parse(summary).at("solver").at("resumed_states").get<int>() > 4);
+
+  write_config("checkpoint.json", config(50));
+  const auto changed = run_softarm("simulate " + file + " -o " + dir);
+  INFO(changed.output);
+  CHECK(changed.exit_code == 0);
+  CHECK(changed.output.find("started over") != std::string::npos);
+  CHECK(curve() != first_curve);
+  const auto fresh = run_softarm("simulate " + file + " -o " + dir + " --fresh");
+  CHECK(fresh.output.find("resumed") == std::string::npos);
+  CHECK(fresh.output.find("started over") == std::string::npos);
 }

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "fem/core/number_text.hpp"
+#include "fem/scenes/path_log.hpp"
 #include "fem/solver/lowest_modes.hpp"
 #include "fem/solver/volume_control.hpp"
 
@@ -91,12 +93,40 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
     }
   };
 
+  std::optional<PathLog> log;
+  if (!spec.checkpoint.file.empty()) {
+    log.emplace(spec.checkpoint.file, spec.checkpoint.fingerprint, x.size());
+    out.checkpoint_discarded = log->discarded_reason();
+  }
+  const std::vector<PathLogRecord> none;
+  const std::vector<PathLogRecord>& resumed = log ? log->resumed() : none;
+  out.resumed_states = static_cast<int>(resumed.size());
+
   // The unloaded state: its stiffness is the reference for "flattening".
   set_pressures(0.0);
   load.dirichlet_scale = 0.0;
   load.gravity_scale = 0.0;
   problem.apply_constraints(x, 0.0);
-  if (spec.gravity_preload) {
+  PathStart start;
+  if (!resumed.empty()) {
+    // An earlier run's states, handed on as they came; its last one is where the path goes on.
+    for (const PathLogRecord& r : resumed) {
+      out.history.push_back(r.state);
+      if (on_state) on_state(r.state, r.x);
+    }
+    const PathLogRecord& last = resumed.back();
+    x = last.x;
+    load.gravity_scale = spec.gravity_preload ? 1.0 : 0.0;
+    set_pressures(last.level);
+    load.dirichlet_scale = last.level;
+    start.level = last.level;
+    start.increment = last.next_increment;
+    // The first record is the state at rest, whose statistics are the gravity preload's.
+    if (resumed.size() >= 2) start.stats = last.stats;
+    for (std::size_t i = resumed.size() >= 3 ? resumed.size() - 3 : 0; i + 1 < resumed.size(); ++i)
+      start.earlier.emplace_back(resumed[i].level, resumed[i].x);
+    out.path.stats = resumed.front().stats;
+  } else if (spec.gravity_preload) {
     // Self-weight first, in its own path (it may bend a soft body noticeably).
     PathCallbacks gravity;
     gravity.apply_load = [&](double level) { load.gravity_scale = level; };
@@ -117,19 +147,22 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
       return out;
     }
   }
-  const Vector x_rest = x;  // the reference for the lowest-mode check at a stall
-  {
+  // The reference for the lowest-mode check at a stall.
+  const Vector x_rest = resumed.empty() ? x : resumed.front().x;
+  if (resumed.empty()) {
     const Evaluation e0 = problem.evaluate(x, true, true);
     solver.factorize(e0.hessian);
     PressureState s0{0.0, chamber.volume(x), pv_stiffness(problem, chamber, solver, x, spec.newton, nullptr),
                      solver.status() == LinearSolver::Status::positive_definite, 0, true};
     out.history.push_back(s0);
     if (on_state) on_state(s0, x);
+    if (log) log->append({0.0, spec.steps.initial_increment, s0, out.path.stats, x});
   }
 
   std::vector<double> levels;
   for (double p : spec.output_pressures_kPa) levels.push_back(p / spec.max_pressure_kPa);
   PathCallbacks callbacks;
+  std::pair<double, const Vector*> converged{0.0, nullptr};  // the state on_converged was last given
   callbacks.apply_load = [&](double level) {
     set_pressures(level);
     load.dirichlet_scale = level;
@@ -140,9 +173,14 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
                     report.tangent_positive_definite, report.iterations, is_output};
     out.history.push_back(s);
     if (on_state) on_state(s, xs);
+    converged = {level, &xs};
   };
+  if (log)
+    callbacks.on_increment = [&](double next_increment, const PathStatistics& stats) {
+      log->append({converged.first, next_increment, out.history.back(), stats, *converged.second});
+    };
   const PathStatistics preload_stats = out.path.stats;
-  out.path = follow_load_path(problem, x, solver, levels, callbacks, spec.newton, spec.steps);
+  out.path = follow_load_path(problem, x, solver, levels, callbacks, spec.newton, spec.steps, start);
   out.path.stats.steps += preload_stats.steps;
   out.path.stats.newton_iterations += preload_stats.newton_iterations;
   out.path.stats.cutbacks += preload_stats.cutbacks;

@@ -63,6 +63,10 @@ struct PressurePathResult {
   double estimated_limit_pressure_kPa = 0.0;  // peak of p(V) when a limit point is found: traced past by
                                               // volume control, or extrapolated from the last states
   PathResult path;
+  /// With a checkpoint: the converged states taken from an earlier run's log (0: started
+  /// from rest), and why an existing log was not resumed ("" if it was, or there was none).
+  int resumed_states = 0;
+  std::string checkpoint_discarded;
   std::vector<PressureState> history;  // every converged step under pressure control
   std::vector<PressureState> beyond_limit;  // volume control's states past the last one (pressure rises, then falls)
   /// At a stall (check_lowest_mode): the tangent's lowest eigenvalue at the last converged state
@@ -77,6 +81,13 @@ struct PressurePathResult {
   // nonzeros of L. What a run can cost starts here: the SPL pose's 284 GFlop took 6.1 s per
   // attempt on the two cores of the development machine, the 3CA's 16.8 GFlop (Hex20 2x2x2) 0.72 s.
   double factor_flops = 0.0, factor_nonzeros = 0.0;
+};
+
+/// Where a pressure path keeps its converged states as it goes (path_log.hpp), so that a rerun
+/// resumes where a stopped one ended. An empty file: none (the cells and the RRA, seconds each).
+struct PathCheckpoint {
+  std::string file;
+  std::string fingerprint;  // names the model the states belong to; a file of another one starts over
 };
 
 struct PressurePathSpec {
@@ -96,10 +107,13 @@ struct PressurePathSpec {
   NewtonSettings newton;
   StepSettings steps;
   LimitPointSettings limit;
+  PathCheckpoint checkpoint;
 };
 
 /// Ramps the pressures of `chambers` (entries of load.chamber_pressure_MPa) from 0
-/// together; calls `on_state` for every converged step.
+/// together; calls `on_state` for every converged step. With `spec.checkpoint`, every
+/// converged step is logged as it comes, and the states of an earlier run's log are handed
+/// to `on_state` again, in order, before the path goes on from the last of them.
 PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::vector<const ChamberPressureForm*>& chambers,
                                      LoadState& load,
                                      Vector& x, const PressurePathSpec& spec,

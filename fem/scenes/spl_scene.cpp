@@ -84,6 +84,7 @@ SplResult run_spl_scene(const SplSceneSpec& spec, const std::function<void(const
   path.steps = spec.steps;
   path.limit = spec.limit;
   path.node_dimension = 3;
+  path.checkpoint = spec.checkpoint;
   Vector x = X;
   const auto t_solve = Clock::now();
   const auto state_of = [&](const PressureState& s, const Vector& xs) {

@@ -41,6 +41,7 @@ struct SplSceneSpec {
                         .rotate_stiff_parts = true};
   StepSettings steps;
   LimitPointSettings limit{.volume_control_by_cg = true};
+  PathCheckpoint checkpoint;  // the 3D model's path only (not the cell rod's cells)
 };
 
 struct SplJoint {

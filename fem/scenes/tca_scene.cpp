@@ -136,7 +136,8 @@ TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
     return t;
   };
 
-  const PressurePathSpec path = tca_pressure_path(spec, chambers, weighs, 3);
+  PressurePathSpec path = tca_pressure_path(spec, chambers, weighs, 3);
+  path.checkpoint = spec.checkpoint;
   Vector x = problem.reference_positions();
   const auto t_solve = Clock::now();
   out.path = run_pressure_path(problem, chambers.loaded, load, x, path, [&](const PressureState& s, const Vector& xs) {

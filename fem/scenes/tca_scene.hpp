@@ -55,6 +55,7 @@ struct TcaSceneSpec {
                         .rotate_stiff_parts = true};
   StepSettings steps;
   LimitPointSettings limit{.volume_control_by_cg = true};
+  PathCheckpoint checkpoint;  // the whole 3CA's path only (not the cell rod's cells)
 };
 
 struct TcaState {

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <stdexcept>
 
 namespace softarm::fem {
 
@@ -34,14 +35,23 @@ Vector extrapolate_state(const std::vector<double>& levels, const std::vector<co
 
 PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolver& solver,
                             const std::vector<double>& output_levels, const PathCallbacks& callbacks,
-                            const NewtonSettings& newton, const StepSettings& settings) {
+                            const NewtonSettings& newton, const StepSettings& settings, const PathStart& start) {
   PathResult result;
-  double level = 0.0, previous_level = 0.0, older_level = 0.0;
+  result.stats = start.stats;
+  double level = start.level, previous_level = start.level, older_level = start.level;
   Vector previous_x = x, older_x;
   int history = 0;  // converged states before x that the predictor may use (0, 1 or 2)
-  double increment = settings.initial_increment;
-  std::size_t next_output = 0;
+  if (start.earlier.size() > 2) throw std::logic_error("follow_load_path: at most two earlier states");
+  for (const auto& [earlier_level, earlier_x] : start.earlier) {
+    if (history >= 1) older_x = std::move(previous_x), older_level = previous_level;
+    previous_x = earlier_x, previous_level = earlier_level;
+    ++history;
+  }
+  double increment = start.increment > 0 ? start.increment : settings.initial_increment;
   constexpr double kLandingTolerance = 1e-12;
+  std::size_t next_output = 0;  // the first output level above the start
+  while (next_output < output_levels.size() && output_levels[next_output] - level <= kLandingTolerance) ++next_output;
+  result.reached_level = level;
   constexpr double kNoCeiling = std::numeric_limits<double>::infinity();
   double ceiling = kNoCeiling;  // lowest level of an unstable-branch failure not yet passed
   int halvings = 0;             // steps cut to half the distance to the ceiling since it was set
@@ -89,6 +99,7 @@ PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolve
       if (callbacks.on_converged) callbacks.on_converged(level, x, lands, report);
       if (report.iterations <= settings.easy_iterations) increment = std::min(increment * settings.growth, settings.max_increment);
       if (report.iterations >= settings.hard_iterations) increment *= settings.shrink;
+      if (callbacks.on_increment) callbacks.on_increment(increment, result.stats);
       return true;
     }
     return false;

@@ -12,6 +12,7 @@
 // A path that cannot be continued returns what it reached and why.
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fem/solver/newton.hpp"
@@ -52,6 +53,21 @@ struct PathCallbacks {
   std::function<void(double level)> apply_load;
   /// Called after each converged step; `is_output` marks requested levels.
   std::function<void(double level, const Vector& x, bool is_output, const NewtonReport& report)> on_converged;
+  /// Called after on_converged with the increment the controller will try next: with the
+  /// converged states, what a resumed path needs to go on as this one would (PathStart).
+  std::function<void(double next_increment, const PathStatistics& stats)> on_increment = {};
+};
+
+/// Where a path starts: at rest (level 0, no history, the initial increment), or where an
+/// earlier run of the same problem stopped (a checkpoint, fem/scenes/path_log.hpp): x is then
+/// the converged state at `level`, and `earlier` up to two converged states before it, oldest
+/// first, for the predictor. The step controller's other memory (a level where Newton met only
+/// indefinite tangents) is not kept: it only saves attempts near a limit point.
+struct PathStart {
+  double level = 0.0;
+  double increment = 0.0;  // ≤ 0: StepSettings::initial_increment
+  std::vector<std::pair<double, Vector>> earlier;
+  PathStatistics stats;    // of the path up to `level`, carried on
 };
 
 /// The level of the next step from `level` towards the output level `target` with
@@ -65,9 +81,10 @@ double next_step_level(double level, double increment, double target);
 /// step, and the secant's start had an indefinite tangent).
 Vector extrapolate_state(const std::vector<double>& levels, const std::vector<const Vector*>& states, double target);
 
-/// Follows the path from the converged state x at level 0 through the sorted output levels (the last is the end).
+/// Follows the path from the converged state x at `start.level` (0 by default) through the
+/// sorted output levels above it (the last is the end).
 PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolver& solver,
                             const std::vector<double>& output_levels, const PathCallbacks& callbacks,
-                            const NewtonSettings& newton, const StepSettings& steps);
+                            const NewtonSettings& newton, const StepSettings& steps, const PathStart& start = {});
 
 }  // namespace softarm::fem
