@@ -134,12 +134,15 @@ TEST_CASE("Gravity across the bend takes the 3CA's cell rod through the spatial 
   use_cell_rod_rung(spec);
   spec.chamber_pressure_kPa = {0, 60, 60};  // bends towards +x
   spec.output_pressures_kPa = {30, 60};
-  spec.gravity_m_s2 = Eigen::Vector3d(9.80665, 0, 0);  // along the bend: one plane
-  const CellRodTcaResult along = run_cell_rod_tca(spec);
-  spec.gravity_m_s2 = Eigen::Vector3d(0, 9.80665, 0);  // across it
-  const CellRodTcaResult across = run_cell_rod_tca(spec);
+  // One set of cells for the three: gravity has no part in them, only in the rod.
+  spec.gravity_m_s2 = Eigen::Vector3d(0, 9.80665, 0);  // across the bend
+  REQUIRE(tca_needs_spatial_rod(spec));
+  const TcaRodCells cells = run_tca_rod_cells(spec, true);
+  const CellRodTcaResult across = pose_cell_rod_tca(spec, cells);
+  spec.gravity_m_s2 = Eigen::Vector3d(9.80665, 0, 0);  // along it: one plane
+  const CellRodTcaResult along = pose_cell_rod_tca(spec, cells);
   spec.gravity_m_s2.setZero();
-  const CellRodTcaResult weightless = run_cell_rod_tca(spec);
+  const CellRodTcaResult weightless = pose_cell_rod_tca(spec, cells);
   REQUIRE(along.converged);
   REQUIRE(across.converged);
   REQUIRE(weightless.converged);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 
 #include <Eigen/Geometry>
 
@@ -383,45 +384,70 @@ CellRodState solve_spatial_tca(const SpatialCellRodSpec& rod, const Eigen::Vecto
 }
 }  // namespace
 
-CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
-  CellRodTcaResult out;
-  const int n = spec.design.actuator.ring_count;
-  out.outcome = PathOutcome::stalled;  // until the rod has reached every output
-  if (n < 1) {
-    out.diagnosis = "the cell rod needs rings: a 3CA without them has no ring pitch (and barely bends)";
-    return out;
-  }
+bool tca_needs_spatial_rod(const TcaSceneSpec& spec) {
   // In one plane (the pressures and gravity share a mirror plane through the axis: a half model
   // would do) the planar rod, on which the ladder's error was measured; else the spatial rod, whose
   // cells also give their torsion.
   TcaSceneSpec mirror = spec;
   mirror.allow_symmetry = true;
-  out.spatial = !choose_tca_model(mirror).half;
-  Eigen::Vector3d bend = tca_bend_direction(spec.chamber_pressure_kPa);
-  if (bend.norm() > 0) bend.normalize();
+  return !choose_tca_model(mirror).half;
+}
+
+TcaRodCells run_tca_rod_cells(const TcaSceneSpec& spec, bool with_torsion) {
+  TcaRodCells out;
+  const int n = spec.design.actuator.ring_count;
+  out.with_torsion = with_torsion;
   out.rings = cell_rod_rings(n);
   out.end_rings = end_cell_rings(spec.cell_rod_end_rings, n);
   if (spec.cell_rod_end_rings > 0 && out.end_rings == 0) out.end_cells_note = no_end_cells_note(spec.cell_rod_end_rings, n);
   const int end_count = out.end_rings > 0 ? 2 : 0;
-  std::vector<TcaCellResult> cells(out.rings.size());
-  std::vector<TcaEndCellResult> ends(end_count);
-  std::vector<double> torsion(out.rings.size(), 0.0);
-  std::vector<double> end_twist(end_count, 0.0);  // the spatial rod's bonded end: its twist compliance at rest
+  out.cells.resize(out.rings.size());
+  out.ends.resize(end_count);
+  out.torsion.assign(out.rings.size(), 0.0);
+  out.end_twist.assign(end_count, 0.0);
   // The cells side by side, one thread each (parallel_tasks); the larger end cells first.
   const auto t_cells = std::chrono::steady_clock::now();
   parallel_tasks(end_count + static_cast<int>(out.rings.size()), [&](int i) {
     if (i < end_count) {
       const TcaEnd end = i == 0 ? TcaEnd::bottom : TcaEnd::top;
-      ends[i] = run_tca_end_cell(spec, end, out.end_rings, tca_scene_end_support(end));
-      if (out.spatial && tca_scene_end_support(end) == EndFaceSupport::bonded)
-        end_twist[i] = end_cell_twist_compliance(spec, end, out.end_rings);
+      out.ends[i] = run_tca_end_cell(spec, end, out.end_rings, tca_scene_end_support(end));
+      if (with_torsion && tca_scene_end_support(end) == EndFaceSupport::bonded)
+        out.end_twist[i] = end_cell_twist_compliance(spec, end, out.end_rings);
       return;
     }
     i -= end_count;
-    cells[i] = run_tca_cell(spec, out.rings[i]);
-    if (out.spatial) torsion[i] = cell_torsion_stiffness(spec, out.rings[i]);
+    out.cells[i] = run_tca_cell(spec, out.rings[i]);
+    if (with_torsion) out.torsion[i] = cell_torsion_stiffness(spec, out.rings[i]);
   });
-  out.cell_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_cells).count();
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_cells).count();
+  return out;
+}
+
+CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
+  if (spec.design.actuator.ring_count < 1) return pose_cell_rod_tca(spec, {});
+  return pose_cell_rod_tca(spec, run_tca_rod_cells(spec, tca_needs_spatial_rod(spec)));
+}
+
+CellRodTcaResult pose_cell_rod_tca(const TcaSceneSpec& spec, const TcaRodCells& pieces) {
+  CellRodTcaResult out;
+  out.outcome = PathOutcome::stalled;  // until the rod has reached every output
+  if (spec.design.actuator.ring_count < 1) {
+    out.diagnosis = "the cell rod needs rings: a 3CA without them has no ring pitch (and barely bends)";
+    return out;
+  }
+  out.spatial = tca_needs_spatial_rod(spec);
+  if (out.spatial && !pieces.with_torsion)
+    throw std::logic_error("pose_cell_rod_tca: loads out of one plane need the cells' torsion");
+  Eigen::Vector3d bend = tca_bend_direction(spec.chamber_pressure_kPa);
+  if (bend.norm() > 0) bend.normalize();
+  out.rings = pieces.rings;
+  out.end_rings = pieces.end_rings;
+  out.end_cells_note = pieces.end_cells_note;
+  const auto& cells = pieces.cells;
+  const auto& ends = pieces.ends;
+  const auto& torsion = pieces.torsion;
+  const auto& end_twist = pieces.end_twist;
+  out.cell_seconds = pieces.seconds;
   out.cell_dofs = cells.back().dofs;
   out.end_cell_dofs = ends.empty() ? 0 : ends.back().dofs;
   const CellRodSpec rod = tca_cell_rod(spec, cells, ends);

@@ -147,4 +147,28 @@ struct CellRodTcaResult {
 };
 CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec);
 
+/// Whether spec's loads leave every mirror plane through the axis (the spatial cell rod's case).
+bool tca_needs_spatial_rod(const TcaSceneSpec& spec);
+
+/// The 3D pieces of run_cell_rod_tca: the cells about cell_rod_rings and the end cells, each run
+/// along spec's pressure ramp, with the cells' torsion and the bonded end's twist at rest where
+/// `with_torsion` (the spatial rod's). Gravity has no part in them (a cell carries no weight, and its
+/// mirror plane comes from the pressures), so one set poses the 3CA under any gravity.
+struct TcaRodCells {
+  std::vector<int> rings;
+  int end_rings = 0;
+  std::string end_cells_note;
+  bool with_torsion = false;
+  std::vector<TcaCellResult> cells;
+  std::vector<TcaEndCellResult> ends;
+  std::vector<double> torsion;    // GJ of each cell at rest (with_torsion)
+  std::vector<double> end_twist;  // twist compliance of each bonded end at rest (with_torsion; 0: free end)
+  double seconds = 0;             // the cells side by side, one thread each
+};
+TcaRodCells run_tca_rod_cells(const TcaSceneSpec& spec, bool with_torsion);
+/// The cell rod of spec's loads on cells run for spec's design, mesh and pressures (what
+/// run_cell_rod_tca does after running them). Throws std::logic_error for loads out of one plane on
+/// cells without torsion.
+CellRodTcaResult pose_cell_rod_tca(const TcaSceneSpec& spec, const TcaRodCells& cells);
+
 }  // namespace softarm::fem
