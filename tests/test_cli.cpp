@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -21,12 +22,14 @@ struct RunResult {
 RunResult run_softarm(const std::string& args) {
   const auto dir = std::filesystem::temp_directory_path() / "softarm_cli_test";
   std::filesystem::create_directories(dir);
-  const auto log = dir / "log.txt";
+  // One log per call and process: ctest -j runs several of these tests at once.
+  static int calls = 0;
+  const auto log = dir / ("log_" + std::to_string(::getpid()) + "_" + std::to_string(++calls) + ".txt");
   const std::string cmd = std::string(SOFTARM_BINARY) + " " + args + " > " + log.string() + " 2>&1";
   const int status = std::system(cmd.c_str());
-  std::ifstream in(log);
   std::stringstream s;
-  s << in.rdbuf();
+  s << std::ifstream(log).rdbuf();
+  std::filesystem::remove(log);
   return {WEXITSTATUS(status), s.str()};
 }
 
@@ -50,7 +53,7 @@ std::string rra_config(const std::string& geometry_override, const std::string& 
 }
 
 void expect_input_error(const std::string& config_text, const std::string& field) {
-  const auto file = write_config("bad.json", config_text);
+  const auto file = write_config("bad_" + std::to_string(::getpid()) + ".json", config_text);  // tests run side by side
   const auto r = run_softarm("simulate " + file + " -o /tmp/softarm_cli_test/out");
   INFO("config: " << config_text << "\noutput: " << r.output);
   CHECK(r.exit_code == 2);

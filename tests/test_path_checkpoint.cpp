@@ -8,6 +8,7 @@
 
 #include "fem/scenes/path_log.hpp"
 #include "fem/scenes/tca_scene.hpp"
+#include "support/short_3ca.hpp"
 
 using namespace softarm::fem;
 
@@ -15,20 +16,7 @@ namespace {
 // A short 3CA (4 rings, 24 mm) of Hex20 bending under gravity across it, in four outputs: a
 // weight preload, then several pressure steps, each a second or two on one thread.
 TcaSceneSpec short_bending_3ca() {
-  TcaSceneSpec s;
-  RraDesign& a = s.design.actuator;
-  a.length_mm = 24;
-  a.bottom_radius_mm = 9;
-  a.top_radius_mm = 9.45;
-  a.wall_thickness_mm = 0.466 * 9;
-  a.end_cap_thickness_mm = 0.25 * 9;
-  a.ring_count = 4;
-  a.ring_diameter_mm = 0.4 * 24 / 4;
-  s.tube_material = s.sheath_material = builtin_material("dragon_skin_30", "test");
-  s.ring_material = builtin_material("digital_abs", "test");
-  s.chamber_pressure_kPa = {0, 60, 60};
-  s.gravity_m_s2 = Eigen::Vector3d(-9.80665, 0, 0);
-  s.output_pressures_kPa = {15, 30, 45, 60};
+  TcaSceneSpec s = softarm::test::short_3ca_scene(60, {15, 30, 45, 60});
   s.serendipity = true;
   return s;
 }

@@ -8,31 +8,13 @@
 
 #include "fem/scenes/spl_scene.hpp"
 #include "fem/scenes/tca_scene.hpp"
+#include "support/short_3ca.hpp"
 
 using namespace softarm::fem;
 
 namespace {
-TcaDesign short_tca() {
-  TcaDesign d;
-  RraDesign& a = d.actuator;
-  a.length_mm = 24;
-  a.bottom_radius_mm = 9;
-  a.top_radius_mm = 9.45;  // the thesis taper slope
-  a.wall_thickness_mm = 0.466 * 9;
-  a.end_cap_thickness_mm = 0.25 * 9;
-  a.ring_count = 4;
-  a.ring_diameter_mm = 0.4 * 24 / 4;
-  return d;
-}
-
 TcaSceneSpec short_tca_scene(bool allow_symmetry) {
-  TcaSceneSpec s;
-  s.design = short_tca();
-  s.tube_material = s.sheath_material = builtin_material("dragon_skin_30", "test");
-  s.ring_material = builtin_material("digital_abs", "test");
-  s.chamber_pressure_kPa = {0, 40, 40};
-  s.gravity_m_s2 = Eigen::Vector3d(-9.80665, 0, 0);
-  s.output_pressures_kPa = {20, 40};
+  TcaSceneSpec s = softarm::test::short_3ca_scene(40, {20, 40});
   s.allow_symmetry = allow_symmetry;
   return s;
 }
