@@ -6,10 +6,10 @@
 
 namespace softarm::engine {
 
-std::ofstream open_output_file(const std::string& directory, const std::string& file) {
+std::ofstream open_output_file(const std::string& directory, const std::string& file, std::ios::openmode mode) {
   std::error_code error;
   std::filesystem::create_directories(directory, error);
-  std::ofstream out(directory + "/" + file);
+  std::ofstream out(directory + "/" + file, mode | std::ios::out);
   if (error || !out)
     throw fem::InputError("output.directory",
                           "cannot write to '" + directory + "'" + (error ? ": " + error.message() : std::string()));

@@ -8,8 +8,10 @@
 
 namespace softarm::engine {
 
-/// Opens <directory>/<file> for writing; throws fem::InputError("output.directory", …) if it cannot.
-std::ofstream open_output_file(const std::string& directory, const std::string& file);
+/// Opens <directory>/<file> for writing (`mode`: anew by default); throws
+/// fem::InputError("output.directory", …) if it cannot.
+std::ofstream open_output_file(const std::string& directory, const std::string& file,
+                               std::ios::openmode mode = std::ios::out);
 
 /// Writes `document` to <directory>/<file>, indented.
 void write_json_file(const std::string& directory, const std::string& file, const nlohmann::json& document);

@@ -4,7 +4,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "engine/output_files.hpp"
 #include "fem/core/checksum.hpp"
+#include "fem/core/input_error.hpp"
 
 namespace softarm::engine {
 
@@ -15,8 +17,14 @@ fem::PathCheckpoint scene_checkpoint(nlohmann::json document, const std::string&
   const std::string text = document.dump() + "\n" + overrides;
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fem::fnv1a_64(text)));
-  fem::PathCheckpoint checkpoint{directory + "/path_checkpoint.bin", hex};
-  if (fresh) std::filesystem::remove(checkpoint.file);
+  const std::string name = "path_checkpoint.bin";
+  fem::PathCheckpoint checkpoint{directory + "/" + name, hex};
+  std::error_code error;
+  if (fresh) std::filesystem::remove(checkpoint.file, error);
+  if (error)
+    throw fem::InputError("output.directory", "cannot remove '" + checkpoint.file + "' for --fresh: " + error.message());
+  // Writable, before the run (an empty file is a log not yet begun).
+  open_output_file(directory, name, std::ios::app | std::ios::binary);
   return checkpoint;
 }
 

@@ -13,7 +13,8 @@ namespace softarm::engine {
 /// The checkpoint of a scene `document` (the config file's JSON) run with the command
 /// line's `overrides` (mesh level, element order, fidelity: anything that changes the model)
 /// in `directory`. Its fingerprint is a hash of the document without "output" and
-/// "description" and of the overrides; `fresh` removes an earlier run's file.
+/// "description" and of the overrides; `fresh` removes an earlier run's file. Throws
+/// fem::InputError("output.directory", …) where the file cannot be removed or written.
 fem::PathCheckpoint scene_checkpoint(nlohmann::json document, const std::string& overrides, const std::string& directory,
                                      bool fresh);
 

@@ -219,4 +219,9 @@ TEST_CASE("simulate keeps a 3D path as it goes: a rerun resumes it, a changed sc
   const auto fresh = run_softarm("simulate " + file + " -o " + dir + " --fresh");
   CHECK(fresh.output.find("resumed") == std::string::npos);
   CHECK(fresh.output.find("started over") == std::string::npos);
+  // A checkpoint that cannot be written is bad input, before the run.
+  const auto unwritable = run_softarm("simulate " + file + " -o /proc/softarm_cannot_write_here --fresh");
+  INFO(unwritable.output);
+  CHECK(unwritable.exit_code == 2);
+  CHECK(unwritable.output.find("output.directory") != std::string::npos);
 }

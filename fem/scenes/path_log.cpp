@@ -92,10 +92,14 @@ PathLog::PathLog(std::string file, std::string fingerprint, Eigen::Index dofs)
     : file_(std::move(file)), fingerprint_(std::move(fingerprint)), dofs_(dofs) {
   const std::string header = header_of(fingerprint_, dofs_);
   std::uintmax_t valid_bytes = 0;  // of the file, up to its last whole record
-  if (std::ifstream in{file_, std::ios::binary}) {
+  std::error_code size_error;
+  const std::uintmax_t size = std::filesystem::file_size(file_, size_error);
+  if (std::ifstream in{file_, std::ios::binary}; in && !size_error && size > 0) {
     std::string head(header.size(), '\0');
-    if (!in.read(head.data(), static_cast<std::streamsize>(head.size())) || head != header) {
-      discarded_reason_ = "it was written for another model (another config, mesh or softarm version)";
+    if (size < header.size()) {
+      discarded_reason_ = "its header is incomplete (a run stopped as it began)";
+    } else if (!in.read(head.data(), static_cast<std::streamsize>(head.size())) || head != header) {
+      discarded_reason_ = "it was written for another model (another config or mesh)";
     } else {
       valid_bytes = header.size();
       const std::size_t n = payload_size(dofs_);

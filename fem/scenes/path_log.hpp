@@ -33,7 +33,7 @@ class PathLog {
  public:
   /// Opens the log at `file` for a model with `dofs` unknowns named by `fingerprint`. The
   /// records of an earlier run of the same model are read (up to the first torn one); a
-  /// missing or unreadable file, or one of another model, leaves none and is started anew.
+  /// missing, empty or unreadable file, or one of another model, leaves none and is started anew.
   /// Throws std::runtime_error where the file cannot be written.
   PathLog(std::string file, std::string fingerprint, Eigen::Index dofs);
 

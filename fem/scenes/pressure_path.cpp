@@ -125,7 +125,11 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
     if (resumed.size() >= 2) start.stats = last.stats;
     for (std::size_t i = resumed.size() >= 3 ? resumed.size() - 3 : 0; i + 1 < resumed.size(); ++i)
       start.earlier.emplace_back(resumed[i].level, resumed[i].x);
+    start.resumed = true;
     out.path.stats = resumed.front().stats;
+    // The uninterrupted run holds a factor of the tangent there, which Newton's next step reuses
+    // (NewtonSettings::reuse_factor): so does the resumed one (at rest, exactly the same one).
+    solver.factorize(problem.evaluate(x, true, true).hessian);
   } else if (spec.gravity_preload) {
     // Self-weight first, in its own path (it may bend a soft body noticeably).
     PathCallbacks gravity;

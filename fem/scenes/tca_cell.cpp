@@ -438,6 +438,11 @@ CellRodTcaResult pose_cell_rod_tca(const TcaSceneSpec& spec, const TcaRodCells& 
   out.spatial = tca_needs_spatial_rod(spec);
   if (out.spatial && !pieces.with_torsion)
     throw std::logic_error("pose_cell_rod_tca: loads out of one plane need the cells' torsion");
+  const int n = spec.design.actuator.ring_count;
+  if (pieces.rings != cell_rod_rings(n) || pieces.cells.size() != pieces.rings.size() ||
+      pieces.end_rings != end_cell_rings(spec.cell_rod_end_rings, n) ||
+      pieces.ends.size() != (pieces.end_rings > 0 ? 2u : 0u))
+    throw std::logic_error("pose_cell_rod_tca: cells run for another design or end cells");
   Eigen::Vector3d bend = tca_bend_direction(spec.chamber_pressure_kPa);
   if (bend.norm() > 0) bend.normalize();
   out.rings = pieces.rings;

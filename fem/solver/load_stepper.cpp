@@ -50,7 +50,7 @@ PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolve
   double increment = start.increment > 0 ? start.increment : settings.initial_increment;
   constexpr double kLandingTolerance = 1e-12;
   std::size_t next_output = 0;  // the first output level above a resumed start (from rest: the first)
-  if (start.level > 0)
+  if (start.resumed)
     while (next_output < output_levels.size() && output_levels[next_output] - level <= kLandingTolerance) ++next_output;
   result.reached_level = level;
   constexpr double kNoCeiling = std::numeric_limits<double>::infinity();

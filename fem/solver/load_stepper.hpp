@@ -68,6 +68,7 @@ struct PathStart {
   double increment = 0.0;  // ≤ 0: StepSettings::initial_increment
   std::vector<std::pair<double, Vector>> earlier;
   PathStatistics stats;    // of the path up to `level`, carried on
+  bool resumed = false;    // the outputs at or below `level` were reached by the earlier run
 };
 
 /// The level of the next step from `level` towards the output level `target` with
