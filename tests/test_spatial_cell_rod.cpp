@@ -60,7 +60,7 @@ TEST_CASE("A constant free curvature and stretch pose the spatial cell rod as a 
 
 TEST_CASE("A tip load bends the spatial cell rod as the linear cantilever, towards the load", "[cell][rod]") {
   const double L = 100, c = 1e-6, m = 0.01;  // 1/EI in 1/(N·mm²), tip mass kg
-  for (const Eigen::Vector3d g : {Eigen::Vector3d(9.81, 0, 0), Eigen::Vector3d(0, -9.81, 0)}) {
+  for (const Eigen::Vector3d& g : {Eigen::Vector3d(9.81, 0, 0), Eigen::Vector3d(0, -9.81, 0)}) {
     SpatialCellRodSpec spec;
     spec.pieces = {segment(L, {linear_cell(10, {0, 0}, 0, c, 0), linear_cell(90, {0, 0}, 0, c, 0)})};
     spec.gravity_m_s2 = g;
