@@ -128,8 +128,11 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
     start.resumed = true;
     out.path.stats = resumed.front().stats;
     // The uninterrupted run holds a factor of the tangent there, which Newton's next step reuses
-    // (NewtonSettings::reuse_factor): so does the resumed one (at rest, exactly the same one).
-    solver.factorize(problem.evaluate(x, true, true).hessian);
+    // (NewtonSettings::reuse_factor): so does the resumed one (at rest, exactly the same one),
+    // unless the earlier run had reached the end (a replay: no step left).
+    const bool finished = !spec.output_pressures_kPa.empty() &&
+                          spec.output_pressures_kPa.back() / spec.max_pressure_kPa - last.level <= 1e-12;
+    if (!finished) solver.factorize(problem.evaluate(x, true, true).hessian);
   } else if (spec.gravity_preload) {
     // Self-weight first, in its own path (it may bend a soft body noticeably).
     PathCallbacks gravity;
