@@ -89,7 +89,7 @@ FidelityLadder tca_ladder() {
 // machine; on the 3CA the cross-section is converged at level 1 once the layers are fine, and the
 // layers converge at order ~1 (README, "Layers to level 4"). The tip with 1, 2 and 3 layers per band:
 // (261.7, 299.6, 267.7), (238.7, 307.9, 277.0), (228.8, 310.1, 278.8) mm; the steps 26.1 and 10.3 mm
-// fit an order of ~0.7, which leaves this reference ~17-30 mm (order 1 to 0.7) from the converged tip,
+// fit an order of ~0.7, which leaves this reference ~21-31 mm (order 1 to 0.7) from the converged tip,
 // 40 mm extrapolating each coordinate with its own order, so the errors below are lower bounds.
 // Errors: the tip's distance from the reference's over the reference tip's 476 mm travel (README,
 // "The 3CA and SPL scenes"):
@@ -118,7 +118,7 @@ FidelityLadder tca_ladder() {
 //   rigid caps do not (−6 % to −16 %); the tip 2.3 % and 2.5 % of its travel off against 6.6 % and
 //   12.8 %. On the thesis arm, whose weight's moments and last fifth of the ramp (the distal segment
 //   curling back) the short ones lack, the two differ by less than the reference's own distance from
-//   converged (17-40 mm).
+//   converged (21-40 mm).
 //   (With the chord lids before the closed ones, chamber_pressure_form.cpp, rigid caps: tip 20.2 mm,
 //   joints 9.5 mm, bends 65.82°, 84.77°, 18.11°.)
 //   Measured on the way there (bench_spl_cell_rod --compare <reference summary.json> [--full]
@@ -129,7 +129,7 @@ FidelityLadder tca_ladder() {
 //   - Full-model cells everywhere (on rigid caps, 196 s), whose out-of-plane bending compliance under
 //     pressure is up to twice the in-plane one (the half model takes the in-plane value for both): 40.5 mm, 8.5 %
 //     (42.9 mm with the chord lids). Which of the two is nearer the converged pose is open (the
-//     reference is 17-40 mm from it).
+//     reference is 21-40 mm from it).
 // - The spatial rod (0.9-1.1 s, bench_reduced_model; 57 nodes x 4 unknowns): 211 mm, 44 %; joints
 //   120 mm off on average; in one plane it poses the thesis 3CA within 0.3 % of the planar rod
 //   (test_spatial_rod).
