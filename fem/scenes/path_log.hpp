@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fem/scenes/pressure_path.hpp"
@@ -38,6 +39,12 @@ class PathLog {
   PathLog(std::string file, std::string fingerprint, Eigen::Index dofs);
 
   const std::vector<PathLogRecord>& resumed() const { return resumed_; }
+  /// The earlier run's records, moved out of the log (which then holds none).
+  std::vector<PathLogRecord> take_resumed() {
+    std::vector<PathLogRecord> records = std::move(resumed_);
+    resumed_.clear();
+    return records;
+  }
   /// Why nothing was resumed from an existing file ("" when something was, or there was no file).
   const std::string& discarded_reason() const { return discarded_reason_; }
   const std::string& file() const { return file_; }

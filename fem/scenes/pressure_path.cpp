@@ -98,9 +98,10 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
     log.emplace(spec.checkpoint.file, spec.checkpoint.fingerprint, x.size());
     out.checkpoint_discarded = log->discarded_reason();
   }
-  const std::vector<PathLogRecord> none;
-  const std::vector<PathLogRecord>& resumed = log ? log->resumed() : none;
+  // Taken out of the log and dropped once replayed: the thesis SPL's are ~150 MB.
+  std::vector<PathLogRecord> resumed = log ? log->take_resumed() : std::vector<PathLogRecord>{};
   out.resumed_states = static_cast<int>(resumed.size());
+  const bool from_rest = resumed.empty();
 
   // The unloaded state: its stiffness is the reference for "flattening".
   set_pressures(0.0);
@@ -155,8 +156,9 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
     }
   }
   // The reference for the lowest-mode check at a stall.
-  const Vector x_rest = resumed.empty() ? x : resumed.front().x;
-  if (resumed.empty()) {
+  const Vector x_rest = from_rest ? x : resumed.front().x;
+  resumed = {};
+  if (from_rest) {
     const Evaluation e0 = problem.evaluate(x, true, true);
     solver.factorize(e0.hessian);
     PressureState s0{0.0, chamber.volume(x), pv_stiffness(problem, chamber, solver, x, spec.newton, nullptr),
