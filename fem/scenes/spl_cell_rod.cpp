@@ -43,7 +43,8 @@ EndFaceSupport spl_end_support(int n, TcaEnd end) {
   return end == TcaEnd::bottom && n == 2 ? EndFaceSupport::free : EndFaceSupport::bonded;
 }
 
-SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::function<void(TcaSceneSpec&)>& adjust) {
+SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::function<void(TcaSceneSpec&)>& adjust,
+                   bool with_torsion) {
   const auto t0 = std::chrono::steady_clock::now();
   SplCells out;
   out.rod.gravity_m_s2 = spec.gravity_m_s2;
@@ -103,14 +104,31 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::functio
     if (i < end_count) {
       const EndJob& e = end_jobs[i];
       ends[i] = run_tca_end_cell(scenes[e.segment], e.end, out.end_rings[e.segment], e.face);
-      if (e.face == EndFaceSupport::bonded)
+      if (with_torsion && e.face == EndFaceSupport::bonded)
         end_twist[i] = end_cell_twist_compliance(scenes[e.segment], e.end, out.end_rings[e.segment]);
       return;
     }
     i -= end_count;
     cells[i] = run_tca_cell(scenes[jobs[i].segment], jobs[i].ring);
-    torsion[i] = cell_torsion_stiffness(scenes[jobs[i].segment], jobs[i].ring);
+    if (with_torsion) torsion[i] = cell_torsion_stiffness(scenes[jobs[i].segment], jobs[i].ring);
   });
+  // Each segment's lowest stop over its cells and end cells (the limit point's pressure where traced).
+  const auto note_stop = [&](int n, const PressurePathResult& path) {
+    const double reached = path.outcome == PathOutcome::limit_point && path.estimated_limit_pressure_kPa > 0
+                               ? path.estimated_limit_pressure_kPa
+                               : path.reached_pressure_kPa;
+    if (path.outcome != PathOutcome::completed && (out.segment_outcome[n] == PathOutcome::completed ||
+                                                    reached < out.segment_reached_kPa[n])) {
+      out.segment_outcome[n] = path.outcome;
+      out.segment_reached_kPa[n] = reached;
+    }
+  };
+  for (int n = 0; n < 3; ++n) {
+    const auto& p = scenes[n].chamber_pressure_kPa;
+    out.segment_reached_kPa[n] = *std::max_element(p.begin(), p.end());
+  }
+  for (std::size_t i = 0; i < end_jobs.size(); ++i) note_stop(end_jobs[i].segment, ends[i].path);
+  for (std::size_t i = 0; i < jobs.size(); ++i) note_stop(jobs[i].segment, cells[i].path);
   for (std::size_t i = 0; i < end_jobs.size(); ++i) {
     const EndJob& e = end_jobs[i];
     const auto& p = scenes[e.segment].chamber_pressure_kPa;
@@ -137,14 +155,14 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::functio
     if (cell.path.outcome != PathOutcome::completed)
       out.notes += " (segment " + std::to_string(n + 1) + ", ring " + std::to_string(ring) + ": " +
                    cell.path.diagnosis + ")";
-    if (!(torsion[i] > 0)) {
+    if (with_torsion && !(torsion[i] > 0)) {
       out.failure = "segment " + std::to_string(n + 1) + ", ring " + std::to_string(ring) +
                     ": the cell's tangent at rest is not positive definite (no torsional stiffness)";
       return out;
     }
     auto& tables = out.rod.pieces[jobs[i].piece].cells;
     tables.push_back(spatial_cell_table(cell, *std::max_element(p.begin(), p.end())));
-    tables.back().torsion_compliance_per_Nmm2 = 1 / torsion[i];
+    tables.back().torsion_compliance_per_Nmm2 = with_torsion ? 1 / torsion[i] : 0.0;
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

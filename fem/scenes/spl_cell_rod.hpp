@@ -45,14 +45,21 @@ struct SplCells {
   std::string end_cells_note;                  // the segments without end cells, and why
   double seconds = 0;                          // wall time of all the cells (run side by side)
   std::vector<PathOutcome> outcomes;           // per end cell, then per cell, in order
+  /// Per segment, over its cells and end cells: the one that stopped at the lowest pressure (its
+  /// outcome, completed where every one reached its peak) and that pressure (of its most pressurised
+  /// chamber: the peak where completed, the limit point's pressure where one was traced).
+  std::array<PathOutcome, 3> segment_outcome{PathOutcome::completed, PathOutcome::completed, PathOutcome::completed};
+  std::array<double, 3> segment_reached_kPa{};
   std::string notes;                           // the cells that stopped short, and why
   std::string failure;                         // why there are no cells (a segment without rings)
 };
 /// `cell_levels`: the load levels at which the cells report (every 1/cell_levels of the ramp);
 /// `adjust`, if given, changes each segment's cell scene after spl_segment_cell_scene (a benchmark's
-/// other mesh or end rings).
+/// other mesh or end rings). Without `with_torsion` the cells' GJ and the bonded ends' twist are not
+/// measured and the rod is rigid in torsion: exact for loads in one mirror plane of every segment (a
+/// planar pose twists nothing), and about a fifth of the cost saved.
 SplCells spl_cells(const SplSceneSpec& spec, int cell_levels = 16,
-                   const std::function<void(TcaSceneSpec&)>& adjust = {});
+                   const std::function<void(TcaSceneSpec&)>& adjust = {}, bool with_torsion = true);
 
 struct SplCellRodResult {
   std::vector<SplState> curve;        // rest (under gravity), then every output level the rod reached
