@@ -37,6 +37,8 @@ fem::ArmRodSpec rod_spec(const ArmCandidate& c, const EvaluationSettings& s) {
 // where a thin-walled free RRA would balloon for reasons the 3CA does not share. The end
 // pressure comes from the rod's own lone-RRA model, which extends less than the FEM (so the
 // FEM covers the stretch).
+}  // namespace
+
 fem::RraCalibration segment_rra_fem(const ArmCandidate& c, const EvaluationSettings& s, int n, double stretch) {
   fem::RraSceneSpec spec;
   spec.design = c.design.segments[n].actuator;
@@ -58,6 +60,7 @@ fem::RraCalibration segment_rra_fem(const ArmCandidate& c, const EvaluationSetti
   return fem::calibrate_rra(spec);
 }
 
+namespace {
 // Burst utilisation of the local peaks: spec §4 criteria (a), (b).
 std::pair<double, std::string> utilisation(const fem::RraCalibration::Peaks& peaks, const fem::Material& m, double sf) {
   const fem::BurstUtilisation u = fem::burst_utilisation(m, peaks.stress_MPa, peaks.stretch, sf);
@@ -89,6 +92,8 @@ SegmentMeasures bend_segment(const ArmCandidate& c, const EvaluationSettings& s,
   if (!st.converged) out.rod_diagnosis = st.diagnosis;
   return out;
 }
+
+}  // namespace
 
 // Phase 2: the burst criteria and durability along the path, from the lone RRA's FEM peaks.
 void judge_segment(SegmentMeasures& out, const std::vector<double>& chamber_stretch, const ArmCandidate& c,
@@ -136,8 +141,6 @@ void judge_segment(SegmentMeasures& out, const std::vector<double>& chamber_stre
     out.burst_utilisation = std::max(out.burst_utilisation, s.working_pressure_kPa / std::max(out.safe_pressure_kPa, 1.0));
 }
 
-}  // namespace
-
 fem::ArmRod segment_rod(const ArmCandidate& c, const EvaluationSettings& s, int segment) {
   fem::ArmRodSpec spec = rod_spec(c, s);
   spec.pieces = {segment_piece(c.design.segments[segment])};
@@ -148,6 +151,17 @@ fem::ArmRod arm_rod(const ArmCandidate& c, const EvaluationSettings& s) {
   fem::ArmRodSpec spec = rod_spec(c, s);
   spec.pieces = fem::spl_rod_pieces(c.design, c.connector);
   return fem::ArmRod(spec);
+}
+
+void add_segment(ArmMeasures& arm, const SegmentMeasures& m) {
+  arm.min_bending_deg = std::min(arm.min_bending_deg, m.bending_deg_at_working);
+  if (m.burst_utilisation >= arm.burst_utilisation) {
+    arm.burst_utilisation = m.burst_utilisation;
+    arm.burst_governing = m.governing.empty() ? "none up to the working pressure" : m.governing;
+  }
+  if (m.safe_pressure_kPa >= 0 && (arm.safe_pressure_kPa < 0 || m.safe_pressure_kPa < arm.safe_pressure_kPa))
+    arm.safe_pressure_kPa = m.safe_pressure_kPa;
+  arm.durability_log_strain = std::max(arm.durability_log_strain, m.peaks.log_strain);
 }
 
 ArmMeasures evaluate_arm(const ArmCandidate& c, const EvaluationSettings& s) {
@@ -170,15 +184,7 @@ ArmMeasures evaluate_arm(const ArmCandidate& c, const EvaluationSettings& s) {
     out.segments[n] = bend_segment(c, s, n, stretch[n]);
     const double needed = stretch[n].empty() ? 1.1 : *std::max_element(stretch[n].begin(), stretch[n].end());
     judge_segment(out.segments[n], stretch[n], c, s, n, segment_rra_fem(c, s, n, needed));
-    const SegmentMeasures& m = out.segments[n];
-    out.min_bending_deg = std::min(out.min_bending_deg, m.bending_deg_at_working);
-    if (m.burst_utilisation >= out.burst_utilisation) {
-      out.burst_utilisation = m.burst_utilisation;
-      out.burst_governing = m.governing.empty() ? "none up to the working pressure" : m.governing;
-    }
-    if (m.safe_pressure_kPa >= 0 && (out.safe_pressure_kPa < 0 || m.safe_pressure_kPa < out.safe_pressure_kPa))
-      out.safe_pressure_kPa = m.safe_pressure_kPa;
-    out.durability_log_strain = std::max(out.durability_log_strain, m.peaks.log_strain);
+    add_segment(out, out.segments[n]);
   }
 
   PayloadSettings ps;

@@ -83,6 +83,23 @@ struct ArmMeasures {
 fem::ArmRod arm_rod(const ArmCandidate& c, const EvaluationSettings& s);
 fem::ArmRod segment_rod(const ArmCandidate& c, const EvaluationSettings& s, int segment);
 
+/// Segment n's (0..2) lone RRA by the axisymmetric FEM, far enough to cover the axial stretch
+/// `stretch` its actuators reach in the 3CA (with a 25 % margin on the strain): the map from an
+/// actuator's mean stretch to its local peaks (RraCalibration::peaks_at).
+fem::RraCalibration segment_rra_fem(const ArmCandidate& c, const EvaluationSettings& s, int n, double stretch);
+
+/// The burst criteria (a), (b), (c) and the durability strain along a segment's path: `out` holds
+/// the path (pressure_kPa, and rod_diagnosis where it stopped short), `chamber_stretch` the largest
+/// pressurised-chamber stretch at each of its pressures; fills chamber_stretch, peaks,
+/// burst_utilisation, safe_pressure_kPa, governing and the lone RRA's extensions. A path that stopped
+/// short counts as a limit point at its last pressure ("limit point (rod)").
+void judge_segment(SegmentMeasures& out, const std::vector<double>& chamber_stretch, const ArmCandidate& c,
+                   const EvaluationSettings& s, int n, const fem::RraCalibration& calibration);
+
+/// Folds a segment's measures into the arm's (min_bending_deg starts at +∞): the least bending, the
+/// largest burst utilisation and what governs it, the lowest safe pressure, the largest peak strain.
+void add_segment(ArmMeasures& arm, const SegmentMeasures& segment);
+
 /// Evaluates every measure. Throws fem::InputError for a design that cannot be built.
 ArmMeasures evaluate_arm(const ArmCandidate& candidate, const EvaluationSettings& settings);
 
