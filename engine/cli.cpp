@@ -236,6 +236,11 @@ int run_cli(int argc, char** argv) {
   design->add_option("--max-evaluations", design_overrides.max_evaluations,
                      "evaluation budget (overrides optimiser.max_evaluations)")
       ->check(CLI::Range(1, 100000));
+  design->add_option("--fidelity", design_overrides.fidelity,
+                     "accurate: every optimum verified on the cell rod, which decides feasibility (the config's "
+                     "check); fast: the fibre-rod search alone, no verification, no 3D check (a first look in minutes; "
+                     "its measured error is printed)")
+      ->check(CLI::IsMember({"fast", "accurate"}));
   design->add_flag("--fresh", design_overrides.fresh,
                    "discard the evaluations and 3D checks of an earlier run in the output directory instead of resuming");
   StudyOptions study_options;

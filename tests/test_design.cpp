@@ -91,8 +91,9 @@ TEST_CASE("bad requirements name the field", "[design]") {
     doc["design_space"]["tube_material"]["choices"][1] = "dragon_skin_99";
     CHECK_THAT(error_field(doc), Catch::Contains("design_space.tube_material.choices[1]"));
   }
-  SECTION("correction rounds without a 3D check to correct by") {
+  SECTION("correction rounds without a check to correct by") {
     doc["check"]["solid_segment"] = 0;
+    doc["check"]["verification"] = "none";
     doc["check"]["corrections"] = 1;
     CHECK_THAT(error_field(doc), Catch::Contains("check.corrections") && Catch::Contains("check.solid_segment"));
   }

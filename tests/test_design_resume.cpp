@@ -2,7 +2,7 @@
 // a run with a budget of 3 evaluations stands for one stopped after 3, and a
 // rerun with a budget of 5 must read those 3 back from checkpoint.jsonl
 // (saying so), compute only 2 more, and log the same first 3 evaluations.
-// Model: the thesis requirements with the 3D check off (seconds per run).
+// Model: the thesis requirements with the 3D check and the verification off (seconds per run).
 #include <unistd.h>
 
 #include <algorithm>
@@ -48,6 +48,7 @@ TEST_CASE("softarm design resumes from its checkpoint and computes only what is 
   auto doc = softarm::fem::load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/thesis_requirements.json");
   doc["check"]["solid_segment"] = 0;
   doc["check"]["corrections"] = 0;
+  doc["check"]["verification"] = "none";
   std::ofstream(dir / "requirements.json") << doc.dump();
   const fs::path out = dir / "out";
 
@@ -59,7 +60,7 @@ TEST_CASE("softarm design resumes from its checkpoint and computes only what is 
   REQUIRE(run_design(dir / "requirements.json", out, 5, dir / "second.log") == 0);
   const std::string second = read_text(dir / "second.log");
   INFO(second);
-  CHECK_THAT(second, Catch::Contains("resuming: 3 evaluations and 0 3D check(s)"));
+  CHECK_THAT(second, Catch::Contains("resuming: 3 evaluations, 0 3D check(s) and 0 verification(s)"));
   const std::vector<std::string> history = lines_of(out / "history.csv");
   REQUIRE(history.size() == 6);
   CHECK(std::equal(first_history.begin(), first_history.end(), history.begin()));

@@ -36,6 +36,7 @@ DesignCheckpoint::DesignCheckpoint(const std::filesystem::path& directory, nlohm
   for (const auto& [k, r] : store_.records()) {
     if (k.rfind("evaluation ", 0) == 0) ++resumed_evaluations_;
     if (k.rfind("solid_check ", 0) == 0) ++resumed_solid_checks_;
+    if (k.rfind("verification ", 0) == 0) ++resumed_verifications_;
   }
 }
 
@@ -70,6 +71,16 @@ std::optional<objectives::SolidSegmentCheck> DesignCheckpoint::solid_check(const
 
 void DesignCheckpoint::add(const std::vector<double>& x, const objectives::SolidSegmentCheck& check) {
   store_.append({{"key", key("solid_check", x)}, {"check", objectives::to_json(check)}});
+}
+
+std::optional<objectives::CellRodEvaluation> DesignCheckpoint::verification(const std::vector<double>& x) const {
+  const nlohmann::json* r = record(store_, key("verification", x));
+  if (!r) return std::nullopt;
+  return objectives::cell_rod_evaluation_from_json(r->at("verification"));
+}
+
+void DesignCheckpoint::add(const std::vector<double>& x, const objectives::CellRodEvaluation& verification) {
+  store_.append({{"key", key("verification", x)}, {"verification", objectives::to_json(verification)}});
 }
 
 }  // namespace softarm::engine

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "engine/optimiser/optimiser.hpp"
+#include "objectives/cell_rod_evaluation.hpp"
 #include "objectives/solid_segment_check.hpp"
 #include "studies/results_store.hpp"
 
@@ -33,14 +34,18 @@ class DesignCheckpoint {
   std::optional<objectives::SolidSegmentCheck> solid_check(const std::vector<double>& x) const;
   void add(const std::vector<double>& x, const objectives::SolidSegmentCheck& check);
 
-  /// Records found on opening: evaluations and 3D checks.
+  std::optional<objectives::CellRodEvaluation> verification(const std::vector<double>& x) const;
+  void add(const std::vector<double>& x, const objectives::CellRodEvaluation& verification);
+
+  /// Records found on opening: evaluations, 3D checks and verifications on the cell rod.
   int resumed_evaluations() const { return resumed_evaluations_; }
   int resumed_solid_checks() const { return resumed_solid_checks_; }
+  int resumed_verifications() const { return resumed_verifications_; }
   const std::filesystem::path& file() const { return store_.file(); }
 
  private:
   studies::ResultsStore store_;
-  int resumed_evaluations_ = 0, resumed_solid_checks_ = 0;
+  int resumed_evaluations_ = 0, resumed_solid_checks_ = 0, resumed_verifications_ = 0;
 };
 
 }  // namespace softarm::engine

@@ -11,6 +11,7 @@
 #include "engine/design/design_report.hpp"
 #include "engine/design/search_log.hpp"
 #include "engine/output_files.hpp"
+#include "objectives/cell_rod_evaluation.hpp"
 #include "fem/core/json_reader.hpp"
 
 namespace softarm::engine {
@@ -52,10 +53,17 @@ void print_constraints(const ConstraintValues& c) {
               << fixed(-100 * c.values[i], 1) << " %" << (c.values[i] > 1e-6 ? "  VIOLATED" : "") << "\n";
 }
 
-// One search of the search model (corrected by `correction`) from x0; prints the optimum and its margins.
+// One search of the search model (corrected by `correction` and the discrepancy model) from x0,
+// within the trust region of half-width `radius` about x0 when the discrepancy model has a centre.
 optimise::Result search(const DesignConfig& config, double ref_strain, const SolidCorrection& correction,
-                        const std::vector<double>& x0, DesignCheckpoint& checkpoint, SearchLog& log) {
-  const optimise::Problem problem = design_problem(config, ref_strain, correction, &checkpoint);
+                        const DiscrepancyModel& discrepancy, double radius, const std::vector<double>& x0,
+                        DesignCheckpoint& checkpoint, SearchLog& log) {
+  optimise::Problem problem = design_problem(config, ref_strain, correction, &checkpoint, &discrepancy);
+  if (!discrepancy.empty() && radius < 1) {
+    problem.variables = trust_region(config, x0, radius);
+    std::cout << "search within the trust region: each variable within " << fixed(100 * radius, 1)
+              << " % of its range of the last verified design\n";
+  }
   optimise::Options options = config.optimiser;
   options.x0 = x0;
   options.on_evaluation = [&](const optimise::Progress& p) {
@@ -68,13 +76,16 @@ optimise::Result search(const DesignConfig& config, double ref_strain, const Sol
 }
 
 void print_optimum(const DesignConfig& config, const optimise::Result& result, const objectives::ArmMeasures& m,
-                   double ref_strain, const SolidCorrection& correction) {
+                   double ref_strain, const SolidCorrection& correction, const DiscrepancyModel& discrepancy) {
   std::cout << (result.feasible ? "optimal design: " : "no design meets every requirement; the closest: ")
             << describe(config, result.x) << "\n";
   print_measures(correction.checks ? "optimum (search model, corrected: " + correction.describe() + ")"
                                    : std::string("optimum (search model)"),
                  m);
-  const ConstraintValues margins = constraints_of(config, m, ref_strain);
+  const ConstraintValues margins = corrected_constraints_at(config, m, ref_strain, {}, &discrepancy, result.x);
+  if (!discrepancy.empty())
+    std::cout << "  margins of the search model corrected by the verified designs ("
+              << discrepancy.describe(margins.names) << "):\n";
   print_constraints(margins);
   if (!result.feasible) {
     std::size_t worst = 0;
@@ -110,6 +121,58 @@ std::optional<objectives::SolidSegmentCheck> check_in_3d(const DesignConfig& con
   print_solid_check(*sc, config.requirements.bending_per_segment_deg);
   return sc;
 }
+
+bool all_met(const DesignConfig& config, const objectives::ArmMeasures& m, double ref_strain) {
+  for (double g : constraints_of(config, m, ref_strain).values)
+    if (!(g <= 1e-9)) return false;
+  return true;
+}
+
+// The accurate model's verdict on an optimum: every requirement on the cell rod of the whole arm
+// (objectives/cell_rod_evaluation.hpp), or the verification the checkpoint holds from an earlier run.
+std::optional<objectives::CellRodEvaluation> verify_on_cells(const DesignConfig& config, const std::vector<double>& x,
+                                                            const objectives::ArmMeasures& searched, double ref_strain,
+                                                            DesignCheckpoint& checkpoint, Clock::time_point t0) {
+  std::optional<objectives::CellRodEvaluation> v = checkpoint.verification(x);
+  if (v) {
+    std::cout << "verification on the cell rod: read from " << checkpoint.file().string() << "\n";
+  } else {
+    std::cout << "verification on the cell rod: each segment's ring-pitch cells and end cells along its ramp to "
+              << fixed(config.check.working_pressure_kPa, 1) << " kPa (minutes; "
+              << fixed(std::chrono::duration<double>(Clock::now() - t0).count(), 0) << " s into the run) ...\n"
+              << std::flush;
+    try {
+      v = objectives::evaluate_arm_on_cells(make_candidate(config, x), config.check, config.cell_levels);
+    } catch (const std::exception& e) {
+      std::cout << "verification could not run: " << e.what() << "\n";
+      return std::nullopt;
+    }
+    checkpoint.add(x, *v);
+  }
+  std::cout << "verification (" << v->model << "; cells " << fixed(v->cell_seconds, 0) << " s, " << v->poses
+            << " rod poses " << fixed(v->pose_seconds, 1) << " s)";
+  if (!v->ok()) {
+    std::cout << ": no cells: " << v->failure << "\n";
+    return v;
+  }
+  std::cout << "\n";
+  print_measures("  accurate model", v->measures);
+  const objectives::ArmMeasures& m = v->measures;
+  for (int n = 0; n < 3; ++n) {
+    const auto& seg = m.segments[static_cast<std::size_t>(n)];
+    std::cout << "  segment " << n + 1 << ": " << fixed(seg.bending_deg_at_working, 1) << " deg at "
+              << fixed(seg.pressure_kPa.empty() ? 0.0 : seg.pressure_kPa.back(), 1) << " kPa (search model "
+              << fixed(searched.segments[static_cast<std::size_t>(n)].bending_deg_at_working, 1) << "), cells "
+              << fem::to_string(v->segment_outcome[static_cast<std::size_t>(n)]) << " at "
+              << fixed(v->segment_reached_kPa[static_cast<std::size_t>(n)], 1) << " kPa; burst utilisation "
+              << fixed(seg.burst_utilisation, 3) << (seg.governing.empty() ? "" : " (" + seg.governing + ")") << "\n";
+  }
+  std::cout << "  payload " << fixed(m.payload_kg, 3) << " kg (search model " << fixed(searched.payload_kg, 3)
+            << " kg), lifted at " << fixed(m.payload_lift_pressure_kPa, 1) << " kPa; heavier: " << m.payload_note << "\n";
+  print_constraints(constraints_of(config, m, ref_strain));
+  std::cout << "  verdict on the accurate model: " << (all_met(config, m, ref_strain) ? "every requirement met" : "NOT every requirement met") << "\n";
+  return v;
+}
 }  // namespace
 
 int run_design(const std::string& file, const DesignOverrides& overrides) {
@@ -119,23 +182,31 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
   if (!overrides.output_directory.empty()) config.output_directory = overrides.output_directory;
   if (!overrides.algorithm.empty()) config.optimiser.algorithm = overrides.algorithm;
   if (overrides.max_evaluations > 0) config.optimiser.max_evaluations = overrides.max_evaluations;
+  if (overrides.fidelity == "fast") {  // a first look: the fibre rod's verdict, with its measured error printed
+    config.verify_on_cells = false;
+    config.solid_check_segment = 0;
+    config.solid_corrections = 0;
+  }
   std::filesystem::create_directories(config.output_directory);
   DesignCheckpoint checkpoint(config.output_directory, document, overrides.fresh);
   std::cout << "softarm design: " << file << "\nobjective: " << config.objective << "; requirements: mass <= "
             << config.requirements.max_mass_kg << " kg, payload >= " << config.requirements.min_payload_kg
             << " kg, bending >= " << config.requirements.bending_per_segment_deg << " deg per segment at "
             << config.requirements.max_pressure_kPa << " kPa, length " << config.requirements.length_m << " m\n"
-            << "model: reduced rod + axisymmetric RRA FEM level " << config.model.rra_mesh_level << "; optimiser "
+            << "search model: reduced rod + axisymmetric RRA FEM level " << config.model.rra_mesh_level << "; optimiser "
             << config.optimiser.algorithm << ", budget " << config.optimiser.max_evaluations << " evaluations, "
             << config.optimiser.starts << " start(s)";
-  if (config.solid_check_segment > 0)
-    std::cout << "; 3D check of segment " << config.solid_check_segment << ", up to " << config.solid_corrections
-              << " correction round(s)";
+  if (config.verify_on_cells)
+    std::cout << "; every optimum verified on the cell rod of the whole arm, which decides feasibility";
+  else
+    std::cout << "; no verification: the search model's verdict (fast fidelity)";
+  if (config.solid_check_segment > 0) std::cout << "; 3D check of segment " << config.solid_check_segment;
+  if (config.solid_corrections > 0) std::cout << "; up to " << config.solid_corrections << " correction round(s)";
   std::cout << "\n";
-  if (checkpoint.resumed_evaluations() + checkpoint.resumed_solid_checks() > 0)
-    std::cout << "resuming: " << checkpoint.resumed_evaluations() << " evaluations and " << checkpoint.resumed_solid_checks()
-              << " 3D check(s) of an earlier run are read from " << checkpoint.file().string()
-              << " instead of computed (--fresh discards them)\n";
+  if (checkpoint.resumed_evaluations() + checkpoint.resumed_solid_checks() + checkpoint.resumed_verifications() > 0)
+    std::cout << "resuming: " << checkpoint.resumed_evaluations() << " evaluations, " << checkpoint.resumed_solid_checks()
+              << " 3D check(s) and " << checkpoint.resumed_verifications() << " verification(s) of an earlier run are "
+              << "read from " << checkpoint.file().string() << " instead of computed (--fresh discards them)\n";
 
   const double ref_strain =
       objectives::durability_reference_log_strain(config.requirements.durability_reference_pressure_kPa,
@@ -152,28 +223,66 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
   print_measures("thesis design (Tables 7, 11)", run.thesis);
   print_constraints(constraints_of(config, run.thesis, ref_strain));
 
-  // Search, check in 3D, and while the check finds a requirement not met, correct the search
-  // model by it and search again from the last optimum (solid_correction.hpp).
+  // Search, verify the optimum on the cell rod (and, if asked, one segment in 3D), and while the
+  // verification finds a requirement not met, correct the search model by it and search again from
+  // the last optimum (solid_correction.hpp). The verification decides feasibility.
   SearchLog log(config, ref_strain, run.history);
   SolidCorrection correction;
   std::vector<double> x0 = run.thesis_x;
+  // The first search starts corrected: the start design (the baseline) verified on the cell rod
+  // first, so that no search runs on the uncorrected rod, whose error is 20-50 % where the search goes.
+  DiscrepancyModel discrepancy;  // the verified designs' g_cells − g_search (discrepancy_model.hpp)
+  double radius = config.trust_radius;
+  const auto learn = [&](const std::vector<double>& x, const objectives::ArmMeasures& accurate,
+                         const objectives::ArmMeasures& searched) {
+    discrepancy.add(normalised_design(config, x), constraints_of(config, accurate, ref_strain).values,
+                    constraints_of(config, searched, ref_strain).values);
+  };
+  if (config.verify_on_cells && config.solid_corrections > 0) {
+    std::cout << "\nthe start design on the accurate model, to correct the first search by:\n";
+    run.thesis_verification = verify_on_cells(config, run.thesis_x, run.thesis, ref_strain, checkpoint, t0);
+    if (run.thesis_verification && run.thesis_verification->ok()) learn(run.thesis_x, run.thesis_verification->measures, run.thesis);
+  }
   std::optional<objectives::ArmMeasures> rod_check;  // the last optimum at the check fidelity, uncorrected
   for (int round = 0;; ++round) {
     if (round > 0) {
       log.next_round(run.result.evaluations, "correction " + std::to_string(round) + ": ");
       std::cout << "\ncorrection round " << round << " of at most " << config.solid_corrections
-                << ": search again from the last optimum with the search model corrected by the 3D check ("
-                << correction.describe() << ")\n";
+                << ": search again from the last optimum with the search model corrected by the "
+                << (config.verify_on_cells ? "verified designs" : "3D check") << " ("
+                << (config.verify_on_cells ? discrepancy.describe(constraints_of(config, {}, ref_strain).names)
+                                           : correction.describe())
+                << ")\n";
     }
-    run.result = search(config, ref_strain, correction, x0, checkpoint, log);
+    run.result = search(config, ref_strain, correction, discrepancy, radius, x0, checkpoint, log);
     run.optimum_x = run.result.x;
     const objectives::ArmMeasures raw = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.model);
     run.optimum = corrected(raw, correction);
-    print_optimum(config, run.result, run.optimum, ref_strain, correction);
+    run.optimum_uncorrected = raw;
+    print_optimum(config, run.result, run.optimum, ref_strain, correction, discrepancy);
     rod_check = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.check);
     std::optional<objectives::SolidSegmentCheck> check;
     if (config.solid_check_segment > 0) check = check_in_3d(config, run.optimum_x, *rod_check, checkpoint);
-    run.rounds.push_back({correction, run.optimum_x, run.optimum, run.result.feasible, check});
+    std::optional<objectives::CellRodEvaluation> verification;
+    if (config.verify_on_cells) verification = verify_on_cells(config, run.optimum_x, raw, ref_strain, checkpoint, t0);
+    run.rounds.push_back({correction, run.optimum_x, run.optimum, run.result.feasible, check, verification});
+    if (config.verify_on_cells) {
+      if (!verification || !verification->ok()) {
+        std::cout << "no correction round: the verification could not measure this design\n";
+        break;
+      }
+      if (all_met(config, verification->measures, ref_strain)) {
+        std::cout << "the verification on the cell rod meets every requirement: no correction needed\n";
+        break;
+      }
+      if (round == config.solid_corrections) break;
+      // The next search starts from this design, corrected by every verified design, within a
+      // trust region half as wide: the linear discrepancy was not enough to hold it here.
+      learn(run.optimum_x, verification->measures, raw);
+      radius *= 0.5;
+      x0 = run.optimum_x;
+      continue;
+    }
     if (round == config.solid_corrections || !check) break;
     if (check->meets_bending() && check->holds_working_pressure()) {
       std::cout << "the 3D check meets bending and holds the working pressure: no correction needed\n";
@@ -241,6 +350,33 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
               << e["error_percent"].get<double>() << " % (" << e["measured_on"].get<std::string>() << ");";
   std::cout << "\n";
 
+  if (const auto& v = run.verification(); v && v->ok()) {
+    const ConstraintValues g = constraints_of(config, v->measures, ref_strain);
+    std::cout << "\nanswer, verified on the cell rod: "
+              << (verified_all_met(run) ? "the design meets every requirement: " : "NOT every requirement met by: ")
+              << describe(config, run.optimum_x) << "\n";
+    print_measures("accurate model", v->measures);
+    print_constraints(g);
+    if (!verified_all_met(run)) {
+      std::size_t worst = 0;
+      for (std::size_t i = 1; i < g.values.size(); ++i)
+        if (g.values[i] > g.values[worst]) worst = i;
+      std::cout << "binding constraint on the accurate model: " << g.names[worst] << ", violated by "
+                << fixed(100 * g.values[worst], 1) << " % of its limit (after " << run.rounds.size() << " round(s))\n";
+    }
+    const objectives::ArmMeasures& raw = run.optimum_uncorrected;
+    const auto percent = [](double search, double accurate) {
+      return std::abs(accurate) > 1e-12 ? fixed(100 * (search - accurate) / std::abs(accurate), 1) + " %" : std::string("n/a");
+    };
+    std::cout << "search model's error at this design (uncorrected fibre rod against the cell rod): payload "
+              << percent(raw.payload_kg, v->measures.payload_kg) << ", bending per segment "
+              << percent(raw.segments[0].bending_deg_at_working, v->measures.segments[0].bending_deg_at_working) << " / "
+              << percent(raw.segments[1].bending_deg_at_working, v->measures.segments[1].bending_deg_at_working) << " / "
+              << percent(raw.segments[2].bending_deg_at_working, v->measures.segments[2].bending_deg_at_working)
+              << ", burst utilisation " << percent(raw.burst_utilisation, v->measures.burst_utilisation) << "\n";
+  } else if (config.verify_on_cells) {
+    std::cout << "\nanswer NOT verified: the cell rod could not measure the final design (above)\n";
+  }
   run.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   write_design_outputs(run);
   std::cout << "total " << fixed(run.seconds, 1) << " s; written: " << config.output_directory

@@ -17,6 +17,7 @@ namespace softarm::engine {
 struct DesignOverrides {
   std::string output_directory, algorithm;
   int max_evaluations = 0;
+  std::string fidelity;  // "fast": the search model alone (no verification, no 3D check); "" or "accurate": the config's
   bool fresh = false;  // discard the checkpoint of an earlier run instead of resuming (design_checkpoint.hpp)
 };
 

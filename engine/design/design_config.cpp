@@ -225,13 +225,30 @@ DesignConfig read_design_config(const nlohmann::json& document) {
         "round-0 and round-1 optima)");
     c.solid_check_model = solid_model == "cell_rod" ? objectives::SolidCheckModel::cell_rod
                                                     : objectives::SolidCheckModel::hex20_reduced;
-    c.solid_corrections = k.integer("corrections", 0, Range::closed(0, 3),
-                                    "check and correct: while the 3D check finds a requirement not met, correct the "
-                                    "search model by it (bending and burst, multiplicative) and search again from the "
-                                    "last optimum, at most this many times; each round costs a search and a 3D check");
-    if (c.solid_corrections > 0 && c.solid_check_segment == 0)
+    const std::string verification = k.choice(
+        "verification", "cell_rod", {"cell_rod", "none"},
+        "cell_rod: every optimum is verified on the cell rod of the whole arm (ring-pitch cells and end cells of "
+        "each segment, ~3-10 min a design on 2 cores): each segment's bending, the hanging arm's payload, burst "
+        "(the cells' limit points; peaks from the cells' chamber stretch), durability, mass; the verification "
+        "decides feasibility and corrects the search model (check.corrections). none: the search model's verdict "
+        "stands (a first look in minutes; its measured error is printed)");
+    c.verify_on_cells = verification == "cell_rod";
+    c.cell_levels = k.integer("cell_levels", 16, Range::closed(4, 64),
+                              "the verification's cells report every 1/cell_levels of the working pressure");
+    c.trust_radius = k.number("trust_radius", 0.25, Range::closed(0.01, 1),
+                              "the first search corrected by verified designs stays within this fraction of each "
+                              "variable's range of the last verified design (1: the whole range); each further "
+                              "round halves it");
+    c.solid_corrections = k.integer("corrections", 0, Range::closed(0, 5),
+                                    "check and correct: while the verification (or, without one, the 3D check of "
+                                    "check.solid_segment) finds a requirement not met, correct the search model by it "
+                                    "(each requirement it measures matched at the verified design) and search again "
+                                    "from the last optimum, at most this many times; each round costs a search and a "
+                                    "verification");
+    if (c.solid_corrections > 0 && c.solid_check_segment == 0 && !c.verify_on_cells)
       throw fem::InputError(k.field("corrections"), "= " + std::to_string(c.solid_corrections) +
-                                                         " needs a 3D check to correct by: set check.solid_segment to 1, 2 or 3");
+                                                         " needs a check to correct by: set check.verification to "
+                                                         "cell_rod or check.solid_segment to 1, 2 or 3");
     c.check = read_model(k, fine, "check");
     for (auto* s : {&c.model, &c.check}) {
       s->working_pressure_kPa = c.requirements.max_pressure_kPa;

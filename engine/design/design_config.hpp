@@ -59,6 +59,12 @@ struct DesignConfig {
   int solid_corrections = 0;                // searches again with the search model corrected by the 3D check
   objectives::SolidCheckModel solid_check_model = objectives::SolidCheckModel::cell_rod;  // check.solid_model
                                             // (solid_correction.hpp), at most this many times
+  /// check.verification: every requirement of each optimum verified on the cell rod of the whole arm
+  /// (objectives/cell_rod_evaluation.hpp), which decides feasibility and corrects the search model
+  /// (check.corrections); false: the search model's verdict stands (a first look).
+  bool verify_on_cells = true;
+  int cell_levels = 16;                     // check.cell_levels: outputs along the cells' pressure ramp
+  double trust_radius = 0.25;               // check.trust_radius: the first corrected search's box, fraction of each range
   double search_margin = 0.01;              // constraints on the search model: g + margin ≤ 0
   optimise::Options optimiser;
   std::string output_directory = "out/design";

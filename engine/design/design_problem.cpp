@@ -1,5 +1,6 @@
 #include "engine/design/design_problem.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -86,12 +87,58 @@ ConstraintValues corrected_constraints(ConstraintValues raw, const SolidCorrecti
   return raw;
 }
 
+std::vector<double> normalised_design(const DesignConfig& config, const std::vector<double>& x) {
+  std::vector<double> u;
+  for (std::size_t i = 0; i < config.variables.size(); ++i) {
+    const optimise::Variable& v = config.variables[i].variable;
+    if (v.kind == optimise::VariableKind::categorical)
+      u.push_back(v.choices.size() > 1 ? x[i] / static_cast<double>(v.choices.size() - 1) : 0.0);
+    else
+      u.push_back((x[i] - v.lower) / (v.upper - v.lower));
+  }
+  return u;
+}
+
+ConstraintValues corrected_constraints_at(const DesignConfig& config, const objectives::ArmMeasures& m,
+                                          double reference_strain, const SolidCorrection& correction,
+                                          const DiscrepancyModel* discrepancy, const std::vector<double>& x) {
+  ConstraintValues g = corrected_constraints(constraints_of(config, m, reference_strain), correction);
+  if (discrepancy && !discrepancy->empty()) {
+    const std::vector<double> delta = discrepancy->at(normalised_design(config, x));
+    for (std::size_t i = 0; i < g.values.size() && i < delta.size(); ++i) g.values[i] += delta[i];
+  }
+  return g;
+}
+
+std::vector<optimise::Variable> trust_region(const DesignConfig& config, const std::vector<double>& x, double radius) {
+  std::vector<optimise::Variable> out;
+  for (std::size_t i = 0; i < config.variables.size(); ++i) {
+    optimise::Variable v = config.variables[i].variable;
+    if (v.kind != optimise::VariableKind::categorical) {
+      const double half = radius * (v.upper - v.lower);
+      double lo = std::max(v.lower, x[i] - half), hi = std::min(v.upper, x[i] + half);
+      if (v.kind == optimise::VariableKind::integer) {
+        lo = std::floor(lo), hi = std::ceil(hi);
+        if (hi <= lo) {
+          if (hi < v.upper) hi += 1;
+          else lo -= 1;
+        }
+      }
+      v.lower = lo, v.upper = hi;
+    }
+    out.push_back(v);
+  }
+  return out;
+}
+
 optimise::Problem design_problem(const DesignConfig& config, double reference_strain,
-                                 const SolidCorrection& correction, DesignCheckpoint* checkpoint) {
+                                 const SolidCorrection& correction, DesignCheckpoint* checkpoint,
+                                 const DiscrepancyModel* discrepancy) {
   optimise::Problem p;
   for (const auto& v : config.variables) p.variables.push_back(v.variable);
   p.constraint_names = constraints_of(config, {}, reference_strain).names;
-  p.evaluate = [&config, reference_strain, correction, checkpoint, names = p.constraint_names](const std::vector<double>& x) {
+  p.evaluate = [&config, reference_strain, correction, checkpoint, discrepancy,
+                names = p.constraint_names](const std::vector<double>& x) {
     std::optional<optimise::Evaluation> raw = checkpoint ? checkpoint->evaluation(x) : std::nullopt;
     if (!raw) {
       raw.emplace();
@@ -108,6 +155,10 @@ optimise::Problem design_problem(const DesignConfig& config, double reference_st
     optimise::Evaluation e = *raw;
     if (e.ok) {
       e.constraints = corrected_constraints({names, raw->constraints}, correction).values;
+      if (discrepancy && !discrepancy->empty()) {
+        const std::vector<double> delta = discrepancy->at(normalised_design(config, x));
+        for (std::size_t i = 0; i < e.constraints.size() && i < delta.size(); ++i) e.constraints[i] += delta[i];
+      }
       for (double& g : e.constraints) g += config.search_margin;  // design margin for the re-check
     }
     return e;

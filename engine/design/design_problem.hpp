@@ -15,6 +15,7 @@
 
 #include "engine/design/design_checkpoint.hpp"
 #include "engine/design/design_config.hpp"
+#include "engine/design/discrepancy_model.hpp"
 #include "engine/design/solid_correction.hpp"
 #include "engine/optimiser/optimiser.hpp"
 #include "objectives/arm_evaluation.hpp"
@@ -40,10 +41,27 @@ double objective_of(const DesignConfig& config, const objectives::ArmMeasures& m
 ConstraintValues corrected_constraints(ConstraintValues raw, const SolidCorrection& correction);
 
 /// The optimiser's problem: the objective and constraints g + config.search_margin ≤ 0 of the
-/// search model's measures, constraints corrected by `correction`. `checkpoint` (optional) is
-/// looked up before a design is measured and keeps every new measurement, uncorrected.
+/// search model's measures, constraints corrected by `correction` and then shifted by the
+/// discrepancy model's δ(u) (optional; discrepancy_model.hpp). `checkpoint` (optional) is looked up
+/// before a design is measured and keeps every new measurement, uncorrected.
 optimise::Problem design_problem(const DesignConfig& config, double reference_strain,
-                                 const SolidCorrection& correction, DesignCheckpoint* checkpoint);
+                                 const SolidCorrection& correction, DesignCheckpoint* checkpoint,
+                                 const DiscrepancyModel* discrepancy = nullptr);
+
+/// The design in the normalised space of the discrepancy model: each variable mapped to [0, 1] over
+/// its bounds (a categorical choice as index/(choices − 1)).
+std::vector<double> normalised_design(const DesignConfig& config, const std::vector<double>& x);
+
+/// The constraints of the search model's measures `m` at x, corrected as design_problem corrects them
+/// (without the search margin).
+ConstraintValues corrected_constraints_at(const DesignConfig& config, const objectives::ArmMeasures& m,
+                                          double reference_strain, const SolidCorrection& correction,
+                                          const DiscrepancyModel* discrepancy, const std::vector<double>& x);
+
+/// The variables' bounds narrowed to a box of half-width `radius` (a fraction of each range) about x
+/// (continuous and integer variables; an integer box spans at least its two nearest integers;
+/// categorical choices stay free): the trust region of a corrected search.
+std::vector<optimise::Variable> trust_region(const DesignConfig& config, const std::vector<double>& x, double radius);
 
 /// "ring_count = 30, taper_ratio = 0.5, ..., tube_material = dragon_skin_30".
 std::string describe(const DesignConfig& config, const std::vector<double>& x);

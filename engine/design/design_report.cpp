@@ -100,6 +100,16 @@ std::vector<std::vector<std::string>> constraint_rows(const DesignConfig& c, con
   return rows;
 }
 
+// A round's verification in brief: the accurate model's measures and each requirement's g.
+nlohmann::json verification_summary(const DesignConfig& c, const objectives::CellRodEvaluation& v, double ref_strain) {
+  nlohmann::json j = {{"ok", v.ok()}, {"measures", measures_json(v.measures)}, {"g", nlohmann::json::object()}};
+  if (v.ok()) {
+    const auto g = constraints_of(c, v.measures, ref_strain);
+    for (std::size_t i = 0; i < g.names.size(); ++i) j["g"][g.names[i]] = g.values[i];
+  }
+  return j;
+}
+
 // The check's fields, and the verdicts and the rod's error derived from them.
 nlohmann::json solid_check_json(const objectives::SolidSegmentCheck& sc) {
   nlohmann::json j = objectives::to_json(sc);
@@ -129,6 +139,58 @@ const std::optional<objectives::SolidSegmentCheck>& DesignRun::solid_check() con
   return rounds.empty() ? none : rounds.back().solid_check;
 }
 
+const std::optional<objectives::CellRodEvaluation>& DesignRun::verification() const {
+  static const std::optional<objectives::CellRodEvaluation> none;
+  return rounds.empty() ? none : rounds.back().verification;
+}
+
+namespace {
+// summary.json's "verification": the final design on the accurate model, every requirement's value
+// and margin there, whether all are met, and the search model's error at that design.
+nlohmann::json verification_json(const DesignRun& run) {
+  const DesignConfig& c = *run.config;
+  const objectives::CellRodEvaluation& v = *run.verification();
+  nlohmann::json j = {{"model", v.model},
+                      {"ok", v.ok()},
+                      {"failure", v.failure},
+                      {"cells", v.cells},
+                      {"end_cells", v.end_cells},
+                      {"largest_cell_dofs", v.largest_cell_dofs},
+                      {"cell_seconds", v.cell_seconds},
+                      {"pose_seconds", v.pose_seconds},
+                      {"poses", v.poses},
+                      {"measures", measures_json(v.measures)},
+                      {"requirements", nlohmann::json::object()}};
+  const auto g = constraints_of(c, v.measures, run.reference_strain);
+  bool all = v.ok();
+  for (std::size_t i = 0; i < g.names.size(); ++i) {
+    const bool met = g.values[i] <= 1e-9;
+    all = all && met;
+    j["requirements"][g.names[i]] = {{"g", g.values[i]}, {"margin_percent", -100 * g.values[i]}, {"met", met}};
+  }
+  j["all_met"] = all;
+  const objectives::ArmMeasures& s = run.optimum_uncorrected;
+  const auto error = [](double search, double accurate) {
+    return std::abs(accurate) > 1e-12 ? nlohmann::json(100 * (search - accurate) / std::abs(accurate)) : nlohmann::json();
+  };
+  j["search_model_error_percent"] = {{"payload_kg", error(s.payload_kg, v.measures.payload_kg)},
+                                     {"min_bending_deg", error(s.min_bending_deg, v.measures.min_bending_deg)},
+                                     {"burst_utilisation", error(s.burst_utilisation, v.measures.burst_utilisation)},
+                                     {"durability_log_strain", error(s.durability_log_strain, v.measures.durability_log_strain)}};
+  for (std::size_t n = 0; n < 3; ++n)
+    j["search_model_error_percent"]["segment_" + std::to_string(n + 1) + "_bending_deg"] =
+        error(s.segments[n].bending_deg_at_working, v.measures.segments[n].bending_deg_at_working);
+  return j;
+}
+}  // namespace
+
+bool verified_all_met(const DesignRun& run) {
+  if (!run.verification() || !run.verification()->ok()) return false;
+  for (double g : constraints_of(*run.config, run.verification()->measures, run.reference_strain).values)
+    if (!(g <= 1e-9)) return false;
+  return true;
+}
+
 void write_design_outputs(const DesignRun& run) {
   const DesignConfig& c = *run.config;
   const std::string& dir = c.output_directory;
@@ -152,12 +214,20 @@ void write_design_outputs(const DesignRun& run) {
   const auto g = constraints_of(c, run.optimum, run.reference_strain);
   for (std::size_t i = 0; i < g.names.size(); ++i) summary["optimum_constraints"][g.names[i]] = g.values[i];
   if (run.solid_check()) summary["optimum_solid_check"] = solid_check_json(*run.solid_check());
+  if (run.thesis_verification)
+    summary["thesis_verification"] = verification_summary(c, *run.thesis_verification, run.reference_strain);
+  if (run.verification()) {
+    summary["verification"] = verification_json(run);
+    summary["feasible"] = verified_all_met(run);  // the accurate model decides
+    summary["feasible_on_search_model"] = run.result.feasible;
+  }
   summary["check_and_correct"] = nlohmann::json::array();
   for (const SearchRound& r : run.rounds)
     summary["check_and_correct"].push_back(
         {{"correction", {{"bending_factor", r.correction.bending_factor},
                          {"burst_utilisation_factor", r.correction.burst_factor},
                          {"from_3d_checks", r.correction.checks}}},
+         {"verification", r.verification ? verification_summary(c, *r.verification, run.reference_strain) : nlohmann::json()},
          {"optimum", design_json(c, r.optimum_x)},
          {"feasible_corrected_search_model", r.feasible},
          {"mass_kg", r.optimum.mass_kg},
@@ -172,8 +242,13 @@ void write_design_outputs(const DesignRun& run) {
 
   report::HtmlDocument doc("softarm design report");
   doc.heading(1, "softarm design report");
-  doc.paragraph(std::string(run.result.feasible ? "A design meets every requirement." :
-                "No design within the bounds meets every requirement; the closest is shown.") +
+  const bool verified = run.verification().has_value();
+  const bool feasible = verified ? verified_all_met(run) : run.result.feasible;
+  doc.paragraph(std::string(feasible ? (verified ? "The design meets every requirement on the accurate model (the cell rod)."
+                                                 : "A design meets every requirement of the search model.")
+                                     : (verified ? "The design found does NOT meet every requirement on the accurate model "
+                                                   "(the cell rod); the closest is shown."
+                                                 : "No design within the bounds meets every requirement; the closest is shown.")) +
                 " Objective: " + c.objective + ". Optimiser: " + c.optimiser.algorithm + ", " +
                 std::to_string(run.result.evaluations) + " evaluations, " + format_number(run.result.seconds) + " s (" +
                 run.result.stop_reason + "). Total run " + format_number(run.seconds) + " s.");
@@ -186,6 +261,23 @@ void write_design_outputs(const DesignRun& run) {
                     v.variable.kind == optimise::VariableKind::categorical ? "choices" : format_number(v.variable.lower) + " – " + format_number(v.variable.upper)});
   }
   doc.table({"variable", "optimum", "thesis", "bounds"}, rows);
+  if (verified && run.verification()->ok()) {
+    const objectives::CellRodEvaluation& v = *run.verification();
+    doc.heading(2, "Verification on the accurate model");
+    doc.paragraph("Every requirement of the final design on the cell rod of the whole arm (" + v.model + "; cells " +
+                  format_number(v.cell_seconds) + " s, " + std::to_string(v.poses) + " rod poses " +
+                  format_number(v.pose_seconds) + " s). This verdict decides feasibility; the search model only guides.");
+    doc.table({"constraint", "accurate model", "margin"}, constraint_rows(c, v.measures, run.reference_strain),
+              "final design on the cell rod");
+    std::vector<std::vector<std::string>> seg_rows;
+    for (std::size_t n = 0; n < 3; ++n)
+      seg_rows.push_back({std::to_string(n + 1), format_number(v.measures.segments[n].bending_deg_at_working),
+                          format_number(run.optimum_uncorrected.segments[n].bending_deg_at_working),
+                          std::string(fem::to_string(v.segment_outcome[n])) + " at " + format_number(v.segment_reached_kPa[n]) + " kPa",
+                          format_number(v.measures.segments[n].burst_utilisation)});
+    doc.table({"segment", "bending on cells (deg)", "search model (deg)", "cells", "burst utilisation"}, seg_rows,
+              "each segment alone at the working pressure, gravity against the bend");
+  }
   doc.heading(2, "Constraints and margins");
   const bool corrected = !run.rounds.empty() && run.rounds.back().correction.checks > 0;
   doc.table({"constraint", "optimum", "margin"}, constraint_rows(c, run.optimum, run.reference_strain),

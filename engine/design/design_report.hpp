@@ -12,6 +12,7 @@
 #include "engine/design/solid_correction.hpp"
 #include "engine/optimiser/optimiser.hpp"
 #include "objectives/arm_evaluation.hpp"
+#include "objectives/cell_rod_evaluation.hpp"
 #include "objectives/solid_segment_check.hpp"
 
 namespace softarm::engine {
@@ -30,6 +31,7 @@ struct SearchRound {
   objectives::ArmMeasures optimum;    // search model, corrected
   bool feasible = false;
   std::optional<objectives::SolidSegmentCheck> solid_check;
+  std::optional<objectives::CellRodEvaluation> verification;  // the optimum on the cell rod (check.verification)
 };
 
 struct DesignRun {
@@ -42,12 +44,21 @@ struct DesignRun {
   std::vector<SearchRound> rounds;  // the first search, then each correction round (check.corrections)
   /// The final optimum's segment by the 3D FEM (check.solid_segment): the last round's check.
   const std::optional<objectives::SolidSegmentCheck>& solid_check() const;
+  /// The final optimum on the cell rod (check.verification): the last round's.
+  const std::optional<objectives::CellRodEvaluation>& verification() const;
+  /// The search model's measures of the final optimum, uncorrected (its error against the verification).
+  objectives::ArmMeasures optimum_uncorrected;
+  /// The start design (the baseline) on the cell rod, when the first search is corrected by it.
+  std::optional<objectives::CellRodEvaluation> thesis_verification;
   optimise::Result result;
   std::vector<HistoryPoint> history;
   double seconds = 0;
 };
 
 void write_design_outputs(const DesignRun& run);
+
+/// Whether the final optimum's verification on the cell rod meets every requirement (false without one).
+bool verified_all_met(const DesignRun& run);
 
 /// The measured errors of the models the search used (the fidelity ladder, fem/scenes/fidelity.hpp):
 /// the 3CA bending by the rod, and the RRA's FEM level that supplies the local peaks.
