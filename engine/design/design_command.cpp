@@ -305,9 +305,10 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
   // Re-check the final optimum at the higher fidelity and report the difference.
   run.check_reference_strain = ref_strain;
   run.check = corrected(*rod_check, correction);
-  print_measures("optimum re-checked (" + std::to_string(config.check.rod_nodes_per_segment) + " rod nodes per segment, " +
-                     std::to_string(config.check.pressure_steps) + " pressure steps" +
-                     (correction.checks ? ", corrected" : "") + ")",
+  print_measures("optimum re-checked by the search model (" + std::to_string(config.check.rod_nodes_per_segment) +
+                     " rod nodes per segment, " + std::to_string(config.check.pressure_steps) + " pressure steps" +
+                     (correction.checks ? ", corrected" : "") +
+                     (config.verify_on_cells ? "; uncorrected: the rod's discretisation, not the verdict" : "") + ")",
                  run.check);
   const ConstraintValues checked = constraints_of(config, run.check, run.check_reference_strain);
   print_constraints(checked);

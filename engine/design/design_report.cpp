@@ -282,7 +282,9 @@ void write_design_outputs(const DesignRun& run) {
   const bool corrected = !run.rounds.empty() && run.rounds.back().correction.checks > 0;
   doc.table({"constraint", "optimum", "margin"}, constraint_rows(c, run.optimum, run.reference_strain),
             corrected ? "optimum, search model corrected by the 3D check (" + run.rounds.back().correction.describe() + ")"
-                      : std::string("optimum, search model"));
+                      : std::string(verified ? "optimum, search model uncorrected (it guides the search; the verdict is the "
+                                               "cell rod's, above)"
+                                             : "optimum, search model"));
   doc.table({"constraint", "thesis design", "margin"}, constraint_rows(c, run.thesis, run.reference_strain),
             corrected ? "thesis design, search model (uncorrected)" : "thesis design, same model");
   doc.table({"constraint", "optimum re-checked", "margin"}, constraint_rows(c, run.check, run.check_reference_strain),
