@@ -55,9 +55,11 @@ void print_constraints(const ConstraintValues& c) {
 
 // One search of the search model (corrected by `correction` and the discrepancy model) from x0,
 // within the trust region of half-width `radius` about x0 when the discrepancy model has a centre.
+// Every 10 evaluations it prints an ETA: the rest of the budget at the mean cost of an evaluation so
+// far, plus `after_s` (the verification that follows, at the last one's cost).
 optimise::Result search(const DesignConfig& config, double ref_strain, const SolidCorrection& correction,
                         const DiscrepancyModel& discrepancy, double radius, const std::vector<double>& x0,
-                        DesignCheckpoint& checkpoint, SearchLog& log) {
+                        DesignCheckpoint& checkpoint, SearchLog& log, double after_s) {
   optimise::Problem problem = design_problem(config, ref_strain, correction, &checkpoint, &discrepancy);
   if (!discrepancy.empty() && radius < 1) {
     problem.variables = trust_region(config, x0, radius);
@@ -66,8 +68,16 @@ optimise::Result search(const DesignConfig& config, double ref_strain, const Sol
   }
   optimise::Options options = config.optimiser;
   options.x0 = x0;
+  const auto started = Clock::now();
   options.on_evaluation = [&](const optimise::Progress& p) {
     log.record(p, problem.constraint_names, options.constraint_tolerance);
+    if (p.evaluation % 10 == 0 && p.evaluation < options.max_evaluations) {
+      const double spent = std::chrono::duration<double>(Clock::now() - started).count();
+      const double left = spent / p.evaluation * (options.max_evaluations - p.evaluation) + after_s;
+      std::cout << "progress: " << p.evaluation << " of at most " << options.max_evaluations
+                << " evaluations in this search; ETA of this round ~" << fixed(left / 60, 1) << " min"
+                << (after_s > 0 ? " (with its verification)" : "") << "\n";
+    }
   };
   const optimise::Result result = optimise::minimise(problem, options);
   std::cout << "\noptimiser: " << result.evaluations << " evaluations (" << result.cache_hits << " cache hits), "
@@ -254,7 +264,12 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
                                            : correction.describe())
                 << ")\n";
     }
-    run.result = search(config, ref_strain, correction, discrepancy, radius, x0, checkpoint, log);
+    const double verification_s = !config.verify_on_cells ? 0.0
+                                  : run.thesis_verification ? run.thesis_verification->measures.seconds
+                                  : 240.0;  // a verification's cells on 2 cores, before one has been timed
+    run.result = search(config, ref_strain, correction, discrepancy, radius, x0, checkpoint, log,
+                        run.rounds.empty() || !run.rounds.back().verification ? verification_s
+                                                                               : run.rounds.back().verification->measures.seconds);
     run.optimum_x = run.result.x;
     const objectives::ArmMeasures raw = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.model);
     run.optimum = corrected(raw, correction);
