@@ -11,6 +11,9 @@ namespace softarm::objectives {
 namespace {
 using Clock = std::chrono::steady_clock;
 constexpr double kDeg = 57.295779513082320876;
+// The payload's lift: the tip's turn between two load levels (1/32 of the ramp) above which the arm is
+// taken to snap through a fold (payload_capacity.cpp rejects tip jumps of over 20 deg likewise).
+constexpr double kMaxTurnPerLevel_deg = 20;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
@@ -42,10 +45,8 @@ namespace {
 double covered_level(const std::vector<fem::SpatialCellPiece>& pieces) {
   double level = 1;
   for (const auto& p : pieces) {
-    for (const auto& t : p.cells)
-      if (!t.level.empty()) level = std::min(level, t.level.back());
-    for (const auto& t : p.ends)
-      if (!t.level.empty()) level = std::min(level, t.level.back());
+    for (const auto& t : p.cells) level = std::min(level, t.level.empty() ? 0.0 : t.level.back());
+    for (const auto& t : p.ends) level = std::min(level, t.level.empty() ? 0.0 : t.level.back());
   }
   return level;
 }
@@ -96,7 +97,9 @@ void bend_segment_on_cells(const fem::SplCells& cells, const ArmCandidate& c, co
       break;
     }
     last = st;
-    const double p = t * s.working_pressure_kPa, angle = turn_towards_deg(st, bend);
+    const double p = t * s.working_pressure_kPa;
+    double angle = turn_towards_deg(st, bend);  // past 180 deg: unwrapped against the last level's
+    if (!out.bending_deg.empty()) angle += 360 * std::round((out.bending_deg.back() - angle) / 360);
     if (!out.bending_deg.empty() && out.pressure_for_target_kPa < 0 && angle >= s.target_bending_deg) {
       const double a0 = out.bending_deg.back(), p0 = out.pressure_kPa.back();
       out.pressure_for_target_kPa = p0 + (s.target_bending_deg - a0) * (p - p0) / (angle - a0);
@@ -107,14 +110,16 @@ void bend_segment_on_cells(const fem::SplCells& cells, const ArmCandidate& c, co
     // largest over the segment's cells (each table read at this level, linearly).
     double stretch = 1;
     for (const fem::SpatialCellTable& cell : rod.pieces[0].cells) {
-      const auto hi = std::lower_bound(cell.level.begin(), cell.level.end(), t);
-      std::size_t i = static_cast<std::size_t>(hi - cell.level.begin());
-      i = std::clamp<std::size_t>(i, 1, cell.level.size() - 1);
-      const double w = cell.level.size() < 2 ? 0.0 : (t - cell.level[i - 1]) / (cell.level[i] - cell.level[i - 1]);
-      const auto at = [&](double a, double b) { return a + w * (b - a); };
-      const double lambda = cell.level.size() < 2 ? cell.stretch.front() : at(cell.stretch[i - 1], cell.stretch[i]);
-      const double kappa = cell.level.size() < 2 ? cell.curvature_per_mm.front().norm()
-                                                 : at(cell.curvature_per_mm[i - 1].norm(), cell.curvature_per_mm[i].norm());
+      if (cell.level.empty()) continue;
+      double lambda = cell.stretch.front(), kappa = cell.curvature_per_mm.front().norm();
+      if (cell.level.size() >= 2) {
+        const auto hi = std::lower_bound(cell.level.begin(), cell.level.end(), t);
+        const std::size_t i = std::clamp<std::size_t>(static_cast<std::size_t>(hi - cell.level.begin()), 1,
+                                                       cell.level.size() - 1);
+        const double w = (t - cell.level[i - 1]) / (cell.level[i] - cell.level[i - 1]);
+        lambda = cell.stretch[i - 1] + w * (cell.stretch[i] - cell.stretch[i - 1]);
+        kappa = cell.curvature_per_mm[i - 1].norm() + w * (cell.curvature_per_mm[i].norm() - cell.curvature_per_mm[i - 1].norm());
+      }
       stretch = std::max(stretch, lambda + kappa * design.axis_distance(cell.z_mm) / 2);
     }
     chamber_stretch.push_back(stretch);
@@ -147,15 +152,31 @@ Lift lift(fem::SpatialCellRodSpec rod, double mass_kg, const EvaluationSettings&
       return out;
     }
     const double tilt = tilt_deg(st);
+    if (last.ok && tilt - previous_tilt > kMaxTurnPerLevel_deg) {  // a snap through a fold, not a lift
+      out.why = "the tip turns " + std::to_string(tilt - previous_tilt) + " deg between two levels near " +
+                std::to_string(t * s.working_pressure_kPa) + " kPa (a fold)";
+      return out;
+    }
     if (tilt >= s.lift_angle_deg) {
-      const double w = t > previous_t ? (s.lift_angle_deg - previous_tilt) / (tilt - previous_tilt) : 1.0;
-      out.pressure_kPa = (previous_t + w * (t - previous_t)) * s.working_pressure_kPa;
-      out.reach_mm = st.position.back().head<2>().norm();
-      const Eigen::Vector2d dir = out.reach_mm > 1e-12 ? Eigen::Vector2d(st.position.back().head<2>() / out.reach_mm)
+      // Land on the lift angle: bisection on the level between the last two (the rod is linear in
+      // neither), the pose and its reach judged there.
+      fem::SpatialCellRodState at = st, below = last;
+      double lo = previous_t, hi = t;
+      for (int it = 0; it < 12 && below.ok; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        const fem::SpatialCellRodState m = fem::solve_spatial_cell_rod(rod, mid, &below);
+        ++poses;
+        if (!m.ok) break;
+        if (tilt_deg(m) >= s.lift_angle_deg) hi = mid, at = m;
+        else lo = mid, below = m;
+      }
+      out.pressure_kPa = hi * s.working_pressure_kPa;
+      out.reach_mm = at.position.back().head<2>().norm();
+      const Eigen::Vector2d dir = out.reach_mm > 1e-12 ? Eigen::Vector2d(at.position.back().head<2>() / out.reach_mm)
                                                        : Eigen::Vector2d(1, 0);
-      for (const auto& r : st.position) {
+      for (const auto& r : at.position) {
         out.x_mm.push_back(r.head<2>().dot(dir));
-        out.z_mm.push_back(r.z() - st.position.front().z());
+        out.z_mm.push_back(r.z() - at.position.front().z());
       }
       out.ok = out.reach_mm >= min_reach;
       if (!out.ok) out.why = "the payload's reach falls below the minimum";
@@ -187,6 +208,7 @@ void payload_on_cells(const fem::SplCells& cells, const EvaluationSettings& s, A
     hi *= 2;
     high = lift(rod, hi, s, top, levels, poses);
   }
+  if (high.ok) lo = hi, low = high;  // 64 kg still lifts: report it, bracket unclosed
   for (int it = 0; it < 14 && high.ok == false; ++it) {
     const double mid = 0.5 * (lo + hi);
     Lift m = lift(rod, mid, s, top, levels, poses);
@@ -242,7 +264,8 @@ CellRodEvaluation evaluate_arm_on_cells(const ArmCandidate& c, const EvaluationS
     const double needed = stretch.empty() ? 1.1 : *std::max_element(stretch.begin(), stretch.end());
     judge_segment(seg, stretch, c, s, n, segment_rra_fem(c, s, n, needed));
     // A stop of the cells is theirs, at the pressure they traced (finer than the rod's levels).
-    if (out.segment_outcome[n] != fem::PathOutcome::completed && seg.governing == "limit point (rod)") {
+    if (out.segment_outcome[n] != fem::PathOutcome::completed && seg.governing == "limit point (rod)" &&
+        out.segment_reached_kPa[n] <= seg.safe_pressure_kPa + 1e-9) {
       seg.safe_pressure_kPa = out.segment_reached_kPa[n];
       seg.governing = out.segment_outcome[n] == fem::PathOutcome::limit_point ? "limit point (cells)"
                                                                               : "stall of the cells";
@@ -306,6 +329,7 @@ nlohmann::json to_json(const CellRodEvaluation& e) {
   for (const auto& s : m.segments) segments.push_back(segment_json(s));
   for (const auto o : e.segment_outcome) outcomes.push_back(fem::to_string(o));
   return {{"mass_kg", m.mass_kg},
+          {"mass_by_part_kg", {m.masses.tube, m.masses.rings, m.masses.sheath, m.masses.connectors}},
           {"length_mm", m.length_mm},
           {"payload_kg", m.payload_kg},
           {"payload_note", m.payload_note},
@@ -337,6 +361,8 @@ CellRodEvaluation cell_rod_evaluation_from_json(const nlohmann::json& j) {
   CellRodEvaluation e;
   ArmMeasures& m = e.measures;
   m.mass_kg = j.at("mass_kg").get<double>();
+  const auto parts = j.at("mass_by_part_kg").get<std::array<double, 4>>();
+  m.masses.tube = parts[0], m.masses.rings = parts[1], m.masses.sheath = parts[2], m.masses.connectors = parts[3];
   m.length_mm = j.at("length_mm").get<double>();
   m.payload_kg = j.at("payload_kg").get<double>();
   m.payload_note = j.at("payload_note").get<std::string>();

@@ -183,6 +183,41 @@ std::optional<objectives::CellRodEvaluation> verify_on_cells(const DesignConfig&
   std::cout << "  verdict on the accurate model: " << (all_met(config, m, ref_strain) ? "every requirement met" : "NOT every requirement met") << "\n";
   return v;
 }
+
+// A verified design's rank: those that meet every requirement first, by objective; then by their
+// largest violation.
+std::pair<double, double> verified_rank(const DesignConfig& config, const objectives::ArmMeasures& m, double ref_strain) {
+  double worst = -1e300;
+  for (double g : constraints_of(config, m, ref_strain).values) worst = std::max(worst, g);
+  return worst <= 1e-9 ? std::pair{0.0, objective_of(config, m, ref_strain)} : std::pair{1.0, worst};
+}
+
+std::size_t best_round(const DesignConfig& config, const DesignRun& run, double ref_strain) {
+  std::size_t best = run.rounds.size() - 1;
+  std::optional<std::pair<double, double>> best_rank;
+  for (std::size_t k = 0; k < run.rounds.size(); ++k) {
+    const auto& v = run.rounds[k].verification;
+    if (!v || !v->ok()) continue;
+    const auto rank = verified_rank(config, v->measures, ref_strain);
+    if (!best_rank || rank < *best_rank) best = k, best_rank = rank;
+  }
+  return best;
+}
+
+// The centre of the next trust region: the best verified design so far (the start design included).
+std::vector<double> best_verified(const DesignConfig& config, const DesignRun& run, double ref_strain,
+                                  const std::vector<double>& fallback) {
+  std::vector<double> x = fallback;
+  std::optional<std::pair<double, double>> best_rank;
+  if (run.thesis_verification && run.thesis_verification->ok())
+    x = run.thesis_x, best_rank = verified_rank(config, run.thesis_verification->measures, ref_strain);
+  for (const SearchRound& r : run.rounds) {
+    if (!r.verification || !r.verification->ok()) continue;
+    const auto rank = verified_rank(config, r.verification->measures, ref_strain);
+    if (!best_rank || rank < *best_rank) x = r.optimum_x, best_rank = rank;
+  }
+  return x;
+}
 }  // namespace
 
 int run_design(const std::string& file, const DesignOverrides& overrides) {
@@ -280,7 +315,8 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     if (config.solid_check_segment > 0) check = check_in_3d(config, run.optimum_x, *rod_check, checkpoint);
     std::optional<objectives::CellRodEvaluation> verification;
     if (config.verify_on_cells) verification = verify_on_cells(config, run.optimum_x, raw, ref_strain, checkpoint, t0);
-    run.rounds.push_back({correction, run.optimum_x, run.optimum, run.result.feasible, check, verification});
+    run.rounds.push_back({correction, run.optimum_x, run.optimum, run.result.feasible, check, verification, raw});
+    run.answer_round = run.rounds.size() - 1;
     if (config.verify_on_cells) {
       if (!verification || !verification->ok()) {
         std::cout << "no correction round: the verification could not measure this design\n";
@@ -290,12 +326,12 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
         std::cout << "the verification on the cell rod meets every requirement: no correction needed\n";
         break;
       }
-      if (round == config.solid_corrections) break;
-      // The next search starts from this design, corrected by every verified design, within a
-      // trust region half as wide: the linear discrepancy was not enough to hold it here.
       learn(run.optimum_x, verification->measures, raw);
+      if (round == config.solid_corrections) break;
+      // The next search is corrected by every verified design, within a trust region half as wide
+      // (the linear discrepancy was not enough to hold this one), about the best verified design.
       radius *= 0.5;
-      x0 = run.optimum_x;
+      x0 = best_verified(config, run, ref_strain, x0);
       continue;
     }
     if (round == config.solid_corrections || !check) break;
@@ -315,6 +351,20 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     }
     correction = next;
     x0 = run.optimum_x;
+  }
+
+  // The answer is the best verified design (the first that meets every requirement ends the loop; with
+  // none, the least violating), not merely the last.
+  if (config.verify_on_cells && !run.rounds.empty()) {
+    run.answer_round = best_round(config, run, ref_strain);
+    if (run.answer_round + 1 != run.rounds.size()) {
+      const SearchRound& a = run.rounds[run.answer_round];
+      std::cout << "the answer is round " << run.answer_round << "'s design, the least violating verified one\n";
+      run.optimum_x = a.optimum_x;
+      run.optimum = a.optimum;
+      run.optimum_uncorrected = a.optimum_uncorrected;
+      rod_check = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.check);
+    }
   }
 
   // Re-check the final optimum at the higher fidelity and report the difference.

@@ -92,7 +92,7 @@ std::vector<double> normalised_design(const DesignConfig& config, const std::vec
   for (std::size_t i = 0; i < config.variables.size(); ++i) {
     const optimise::Variable& v = config.variables[i].variable;
     if (v.kind == optimise::VariableKind::categorical)
-      u.push_back(v.choices.size() > 1 ? x[i] / static_cast<double>(v.choices.size() - 1) : 0.0);
+      u.push_back(0.0);  // the discrepancy's linear term does not extrapolate from one material to another
     else
       u.push_back((x[i] - v.lower) / (v.upper - v.lower));
   }

@@ -49,7 +49,8 @@ optimise::Problem design_problem(const DesignConfig& config, double reference_st
                                  const DiscrepancyModel* discrepancy = nullptr);
 
 /// The design in the normalised space of the discrepancy model: each variable mapped to [0, 1] over
-/// its bounds (a categorical choice as index/(choices − 1)).
+/// its bounds; a categorical choice to 0 (the correction is of zeroth order across materials: a
+/// material the verified designs did not use gets no extrapolated slope).
 std::vector<double> normalised_design(const DesignConfig& config, const std::vector<double>& x);
 
 /// The constraints of the search model's measures `m` at x, corrected as design_problem corrects them

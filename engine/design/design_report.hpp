@@ -32,6 +32,7 @@ struct SearchRound {
   bool feasible = false;
   std::optional<objectives::SolidSegmentCheck> solid_check;
   std::optional<objectives::CellRodEvaluation> verification;  // the optimum on the cell rod (check.verification)
+  objectives::ArmMeasures optimum_uncorrected;                  // search model
 };
 
 struct DesignRun {
@@ -42,6 +43,7 @@ struct DesignRun {
   objectives::ArmMeasures finer_peaks;  // the optimum with the RRA FEM one level finer (peak sensitivity)
   double finer_reference_strain = 0;
   std::vector<SearchRound> rounds;  // the first search, then each correction round (check.corrections)
+  std::size_t answer_round = 0;     // the round whose optimum is the answer (the best verified; else the last)
   /// The final optimum's segment by the 3D FEM (check.solid_segment): the last round's check.
   const std::optional<objectives::SolidSegmentCheck>& solid_check() const;
   /// The final optimum on the cell rod (check.verification): the last round's.

@@ -4,7 +4,8 @@
 // (objectives/cell_rod_evaluation.hpp) gives each constraint's discrepancy
 //     δ_i(u_j) = g_i^cells(u_j) − g_i^search(u_j)
 // at its point u_j in the normalised design space (each variable mapped to [0, 1] over its
-// bounds; a categorical choice as index/(choices − 1)). The search then runs on
+// bounds; every categorical choice at 0, so that no slope extrapolates across materials). The
+// search then runs on
 //     g̃_i(u) = g_i^search(u) + δ_i(u_c) + b_iᵀ (u − u_c),
 // u_c the newest verified design: an additive correction (Eldred, Giunta & Collis 2004) whose
 // linear term interpolates every other verified design exactly, the minimum-norm slope b_i with
