@@ -124,8 +124,8 @@ void bend_segment_on_cells(const fem::SplCells& cells, const ArmCandidate& c, co
     }
     chamber_stretch.push_back(stretch);
   }
-  if (out.rod_diagnosis.empty() && top < 1 - 1e-12)
-    out.rod_diagnosis = "its cells stop at " + std::to_string(top * s.working_pressure_kPa) + " kPa";
+  // A path that ends where its cells' tables end (below the working pressure where a cell stopped)
+  // is no failure of the rod: the cells' stop is judged at the pressure they traced (the caller).
   out.bending_deg_at_working = out.bending_deg.empty() ? 0.0 : out.bending_deg.back();
 }
 
@@ -263,13 +263,15 @@ CellRodEvaluation evaluate_arm_on_cells(const ArmCandidate& c, const EvaluationS
     bend_segment_on_cells(cells, c, s, n, cell_levels, seg, stretch, out.poses);
     const double needed = stretch.empty() ? 1.1 : *std::max_element(stretch.begin(), stretch.end());
     judge_segment(seg, stretch, c, s, n, segment_rra_fem(c, s, n, needed));
-    // A stop of the cells is theirs, at the pressure they traced (finer than the rod's levels).
-    if (out.segment_outcome[n] != fem::PathOutcome::completed && seg.governing == "limit point (rod)" &&
-        out.segment_reached_kPa[n] <= seg.safe_pressure_kPa + 1e-9) {
-      seg.safe_pressure_kPa = out.segment_reached_kPa[n];
+    // A stop of the cells below the working pressure is criterion (c) at the pressure they traced
+    // (finer than the rod's levels), unless another criterion already holds below it.
+    const double stop_kPa = out.segment_reached_kPa[n];
+    if (out.segment_outcome[n] != fem::PathOutcome::completed &&
+        (seg.safe_pressure_kPa < 0 || stop_kPa < seg.safe_pressure_kPa)) {
+      seg.safe_pressure_kPa = stop_kPa;
       seg.governing = out.segment_outcome[n] == fem::PathOutcome::limit_point ? "limit point (cells)"
                                                                               : "stall of the cells";
-      seg.burst_utilisation = std::max(seg.burst_utilisation, s.working_pressure_kPa / std::max(seg.safe_pressure_kPa, 1.0));
+      seg.burst_utilisation = std::max(seg.burst_utilisation, s.working_pressure_kPa / std::max(stop_kPa, 1.0));
     }
     add_segment(m, seg);
   }
