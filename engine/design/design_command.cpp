@@ -101,8 +101,12 @@ void print_optimum(const DesignConfig& config, const optimise::Result& result, c
     std::size_t worst = 0;
     for (std::size_t i = 1; i < margins.values.size(); ++i)
       if (margins.values[i] > margins.values[worst]) worst = i;
-    std::cout << "binding constraint: " << margins.names[worst] << ", violated by " << fixed(100 * margins.values[worst], 1)
-              << " % of its limit at the best design found within the bounds\n";
+    if (margins.values[worst] > 0)
+      std::cout << "binding constraint: " << margins.names[worst] << ", violated by " << fixed(100 * margins.values[worst], 1)
+                << " % of its limit at the best design found within the bounds\n";
+    else  // met, but within the search margin the optimiser asks for
+      std::cout << "binding constraint: " << margins.names[worst] << ", met with " << fixed(-100 * margins.values[worst], 1)
+                << " % to spare, less than the search margin of " << fixed(100 * config.search_margin, 1) << " %\n";
   }
 }
 
