@@ -16,9 +16,12 @@ out=${2:-out/reproducibility}
 shift $(($# > 2 ? 2 : $#)) || true
 mkdir -p "$out"
 bin=${SOFTARM_BIN:-build/softarm}
-run() {  # name threads coretype
-  echo "run $1: SOFTARM_THREADS=$2 OPENBLAS_CORETYPE=$3 ($out/$1.log)"
-  SOFTARM_THREADS=$2 OPENBLAS_CORETYPE=$3 "$bin" design "$config" -o "$out/$1" --fresh "$@" > "$out/$1.log" 2>&1 || true
+run() {  # name threads coretype [softarm design options...]
+  local name=$1 threads=$2 core=$3
+  shift 3
+  echo "run $name: SOFTARM_THREADS=$threads OPENBLAS_CORETYPE=$core ($out/$name.log)"
+  SOFTARM_THREADS=$threads OPENBLAS_CORETYPE=$core "$bin" design "$config" -o "$out/$name" --fresh "$@" \
+    > "$out/$name.log" 2>&1 || true
 }
 extra=("$@")
 run A 1 "${CORE_A:-Haswell}" "${extra[@]}"
