@@ -20,7 +20,8 @@ run() {  # name threads coretype [softarm design options...]
   local name=$1 threads=$2 core=$3
   shift 3
   echo "run $name: SOFTARM_THREADS=$threads OPENBLAS_CORETYPE=$core ($out/$name.log)"
-  SOFTARM_THREADS=$threads OPENBLAS_CORETYPE=$core "$bin" design "$config" -o "$out/$name" --fresh "$@" \
+  # OPENBLAS_VERBOSE=2: the log's first line names the kernel OpenBLAS took ("Core: Haswell").
+  OPENBLAS_VERBOSE=2 SOFTARM_THREADS=$threads OPENBLAS_CORETYPE=$core "$bin" design "$config" -o "$out/$name" --fresh "$@" \
     > "$out/$name.log" 2>&1 || true
 }
 extra=("$@")
