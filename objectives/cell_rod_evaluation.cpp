@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "fem/scenes/spl_cell_rod.hpp"
+#include "objectives/solid_segment_check.hpp"
 
 namespace softarm::objectives {
 namespace {
@@ -19,8 +20,7 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 }  // namespace
 
-// The solver settings are the design's 3CA check's (objectives/solid_segment_check.cpp: a small first
-// step, give up at 1e-3 of the load, chamber-volume control at any stall to trace a ballooning limit point).
+// The path settings are those of every 3D check of a design (use_design_check_path).
 fem::SplSceneSpec arm_cell_scene(const ArmCandidate& c, const EvaluationSettings& s) {
   fem::SplSceneSpec spec;
   spec.design = c.design;
@@ -33,9 +33,7 @@ fem::SplSceneSpec arm_cell_scene(const ArmCandidate& c, const EvaluationSettings
     spec.chamber_pressure_kPa[3 * n + 2] = s.working_pressure_kPa;
   }
   spec.gravity_m_s2 = Eigen::Vector3d(0, 0, -s.gravity_m_s2);
-  spec.steps.initial_increment = 0.03;
-  spec.steps.min_increment = 1e-3;
-  spec.limit.volume_control_fraction = 1.0;
+  use_design_check_path(spec.steps, spec.limit);
   return spec;
 }
 

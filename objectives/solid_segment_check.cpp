@@ -70,6 +70,12 @@ SolidSegmentCheck solid_check_from_json(const nlohmann::json& j) {
   return c;
 }
 
+void use_design_check_path(fem::StepSettings& steps, fem::LimitPointSettings& limit) {
+  steps.initial_increment = 0.03;
+  steps.min_increment = 1e-3;
+  limit.volume_control_fraction = 1.0;
+}
+
 fem::TcaSceneSpec solid_segment_scene(const ArmCandidate& c, int segment, int mesh_level) {
   fem::TcaSceneSpec spec;
   spec.design = c.design.segments.at(static_cast<std::size_t>(segment - 1));
@@ -121,11 +127,7 @@ SolidSegmentCheck check_segment_in_3d(const ArmCandidate& c, const EvaluationSet
   spec.gravity_m_s2 = Eigen::Vector3d(-s.gravity_m_s2, 0.0, 0.0);
   for (int i = 1; i <= s.pressure_steps; ++i) spec.output_pressures_kPa.push_back(p * i / s.pressure_steps);
   spec.target_bending_deg = s.target_bending_deg;
-  // As configs/tca_thesis.json: small first step (gravity preload, then the ramp), give up at
-  // 1e-3 of the load, chamber-volume control at any stall to find a ballooning limit point.
-  spec.steps.initial_increment = 0.03;
-  spec.steps.min_increment = 1e-3;
-  spec.limit.volume_control_fraction = 1.0;
+  use_design_check_path(spec.steps, spec.limit);
   if (model == SolidCheckModel::cell_rod) return check_on_cell_rod(spec, segment, rod, progress);
   const fem::TcaResult r = fem::run_tca_scene(spec, [&](const fem::TcaState& state) {
     if (progress) progress(state.pressure_kPa, state.bending_angle_deg);

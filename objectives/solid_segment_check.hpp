@@ -62,6 +62,11 @@ double bending_at_pressure(const SegmentMeasures& rod, double p_kPa);
 /// Hex20/P1 at 2×2×2 points, mesh `mesh_level`, with no load yet.
 fem::TcaSceneSpec solid_segment_scene(const ArmCandidate& candidate, int segment, int mesh_level = 1);
 
+/// The path settings of every 3D check of a design (as configs/tca_thesis.json): a small first step
+/// (gravity preload, then the ramp), give up at 1e-3 of the load, chamber-volume control at any stall
+/// to trace a ballooning limit point.
+void use_design_check_path(fem::StepSettings& steps, fem::LimitPointSettings& limit);
+
 /// The model a check bends its segment by.
 enum class SolidCheckModel {
   cell_rod,      // the cell rod (fem/scenes/tca_cell.hpp): ring-pitch cells of Hex20/P1 at 27 points with
