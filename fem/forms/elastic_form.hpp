@@ -45,6 +45,9 @@ struct ElementResult {
   double max_principal_cauchy_MPa = 0.0;   // largest principal Cauchy stress over the Gauss points
   double max_principal_log_strain = 0.0;
   double dilatation = 1.0;                 // mean of the projected J over the element
+  // Volume means over the Gauss points (each weighted by its reference dV): the integrand of a
+  // region average (fem/post/region_average.hpp), which converges where a point value does not.
+  double mean_principal_stretch = 1.0, mean_principal_cauchy_MPa = 0.0, mean_principal_log_strain = 0.0;
 };
 
 /// The strain-energy form of a solid body, with its post-processing.

@@ -148,7 +148,8 @@ class ProjectedDilatationForm final : public ElasticForm {
       r.max_principal_cauchy_MPa = -1e300;
       r.max_principal_stretch = 0.0;
       r.min_principal_stretch = 1e300;
-      double volume = 0.0, theta_sum = 0.0;
+      double volume = 0.0, theta_sum = 0.0, valid_volume = 0.0;
+      double stretch_sum = 0.0, stress_sum = 0.0, log_strain_sum = 0.0;
       for (int q = 0; q < E::kGaussPoints; ++q) {
         const double Jv = projected ? theta[q] : J[q];
         theta_sum += Jv * reference_[e][q].dV;
@@ -167,8 +168,18 @@ class ProjectedDilatationForm final : public ElasticForm {
         if (law.has_volumetric_split()) sigma += law.volumetric(Jv).dU * Mat3::Identity();
         Eigen::SelfAdjointEigenSolver<Mat3> es(sigma, Eigen::EigenvaluesOnly);
         r.max_principal_cauchy_MPa = std::max(r.max_principal_cauchy_MPa, es.eigenvalues()[2]);
+        const double dV = reference_[e][q].dV;
+        valid_volume += dV;
+        stretch_sum += dV * lmax;
+        stress_sum += dV * es.eigenvalues()[2];
+        log_strain_sum += dV * std::log(lmax);
       }
       r.dilatation = theta_sum / volume;
+      if (valid_volume > 0.0) {
+        r.mean_principal_stretch = stretch_sum / valid_volume;
+        r.mean_principal_cauchy_MPa = stress_sum / valid_volume;
+        r.mean_principal_log_strain = log_strain_sum / valid_volume;
+      }
     }
     return results;
   }
