@@ -19,6 +19,9 @@ nlohmann::json point_json(const fem::RraCurvePoint& p) {
           {"tube_max_principal_log_strain", p.tube_max_log_strain},
           {"tube_max_principal_stress_MPa", p.tube_max_principal_stress_MPa},
           {"ring_max_principal_stress_MPa", p.ring_max_principal_stress_MPa},
+          {"tube_averaged_principal_stretch", p.averaged.stretch},
+          {"tube_averaged_principal_log_strain", p.averaged.log_strain},
+          {"tube_averaged_principal_stress_MPa", p.averaged.stress_MPa},
           {"newton_iterations", p.newton_iterations}};
 }
 
@@ -45,14 +48,16 @@ void write_vtu(const std::string& path, const fem::RraResult& r) {
 RraCurveWriter::RraCurveWriter(const std::string& directory, std::ostream& out)
     : csv_(open_output_file(directory, "curve.csv")), out_(out) {
   csv_ << "pressure_kPa,extension_mm,chamber_volume_mm3,pv_stiffness_kPa_per_mm3,tube_max_principal_stretch,"
-          "tube_max_principal_stress_MPa,ring_max_principal_stress_MPa,newton_iterations\n";
+          "tube_max_principal_stress_MPa,ring_max_principal_stress_MPa,newton_iterations,tube_averaged_principal_stretch,"
+          "tube_averaged_principal_stress_MPa\n";
   out_ << "  pressure_kPa  extension_mm  volume_mm3  dp/dV_kPa/mm3  max_stretch  max_stress_MPa(tube/ring)\n";
 }
 
 void RraCurveWriter::add(const fem::RraCurvePoint& p) {
   csv_ << std::setprecision(10) << p.pressure_kPa << ',' << p.extension_mm << ',' << p.chamber_volume_mm3 << ','
        << p.pv_stiffness_kPa_per_mm3 << ',' << p.tube_max_stretch << ',' << p.tube_max_principal_stress_MPa << ','
-       << p.ring_max_principal_stress_MPa << ',' << p.newton_iterations << '\n';
+       << p.ring_max_principal_stress_MPa << ',' << p.newton_iterations << ',' << p.averaged.stretch << ','
+       << p.averaged.stress_MPa << '\n';
   csv_.flush();
   out_ << std::fixed << std::setprecision(2) << std::setw(14) << p.pressure_kPa << std::setprecision(3)
        << std::setw(14) << p.extension_mm << std::setprecision(1) << std::setw(12) << p.chamber_volume_mm3

@@ -45,6 +45,7 @@ fem::RraCalibration segment_rra_fem(const ArmCandidate& c, const EvaluationSetti
   spec.tube_material = c.tube;
   spec.ring_material = c.rings;
   spec.mesh_level = s.rra_mesh_level;
+  spec.peak_averaging_radius_mm = s.peak_averaging_radius_mm;
   const fem::FibreLaw law(*c.tube.law);
   const double target_mm = 1.25 * (stretch - 1) * spec.design.length_mm;
   double lo = 0, hi = s.working_pressure_kPa;
@@ -205,15 +206,16 @@ ArmMeasures evaluate_arm(const ArmCandidate& c, const EvaluationSettings& s) {
   return out;
 }
 
-double durability_reference_log_strain(double pressure_kPa, int mesh_level) {
+double durability_reference_log_strain(double pressure_kPa, int mesh_level, double averaging_radius_mm) {
   fem::RraSceneSpec spec;  // RraDesign's defaults are the thesis RRA (Table 7)
   spec.tube_material = fem::builtin_material("dragon_skin_30", "durability_reference");
   spec.ring_material = fem::builtin_material("digital_abs", "durability_reference");
   spec.mesh_level = mesh_level;
+  spec.peak_averaging_radius_mm = averaging_radius_mm;
   spec.path.max_pressure_kPa = pressure_kPa;
   spec.path.output_pressures_kPa = {pressure_kPa};
   const fem::RraResult r = fem::run_rra_scene(spec);
-  return r.curve.empty() ? std::nan("") : r.curve.back().tube_max_log_strain;
+  return r.curve.empty() ? std::nan("") : r.curve.back().averaged.log_strain;
 }
 
 }  // namespace softarm::objectives

@@ -43,6 +43,7 @@ struct EvaluationSettings {
   double lift_reach_fraction = 0.25;    // payload: held out at least this share of the arm's length
   double rra_extension_pressure_kPa = 206.8;  // the lone RRA's extension is reported at this pressure (thesis test)
   double safety_factor = 1.5;           // burst criteria (a), (b)
+  double peak_averaging_radius_mm = fem::kDefaultPeakAveragingRadius_mm;  // the peaks (a), (b) and durability read
   int rra_mesh_level = 1;               // axisymmetric FEM of each segment's RRA
   int pressure_steps = 12;              // rod continuation steps to the working pressure
   int rod_nodes_per_segment = 17;
@@ -104,8 +105,8 @@ void add_segment(ArmMeasures& arm, const SegmentMeasures& segment);
 ArmMeasures evaluate_arm(const ArmCandidate& candidate, const EvaluationSettings& settings);
 
 /// The durability reference: peak principal log strain of the thesis RRA (Table 7)
-/// at `pressure_kPa` in the axisymmetric FEM at `mesh_level` (the same model the
-/// designs are measured with).
-double durability_reference_log_strain(double pressure_kPa, int mesh_level);
+/// at `pressure_kPa` in the axisymmetric FEM at `mesh_level`, averaged over a ball of
+/// `averaging_radius_mm` (the same model and definition the designs are measured with).
+double durability_reference_log_strain(double pressure_kPa, int mesh_level, double averaging_radius_mm);
 
 }  // namespace softarm::objectives

@@ -289,6 +289,7 @@ nlohmann::json segment_json(const SegmentMeasures& s) {
           {"peak_stretch", s.peaks.stretch},
           {"peak_log_strain", s.peaks.log_strain},
           {"peak_stress_MPa", s.peaks.stress_MPa},
+          {"point_peak_stretch", s.peaks.point_stretch},
           {"peaks_extrapolated", s.peaks.extrapolated},
           {"burst_utilisation", s.burst_utilisation},
           {"safe_pressure_kPa", s.safe_pressure_kPa},
@@ -310,6 +311,7 @@ SegmentMeasures segment_from_json(const nlohmann::json& j) {
   s.peaks.stretch = j.at("peak_stretch").get<double>();
   s.peaks.log_strain = j.at("peak_log_strain").get<double>();
   s.peaks.stress_MPa = j.at("peak_stress_MPa").get<double>();
+  s.peaks.point_stretch = j.value("point_peak_stretch", s.peaks.stretch);
   s.peaks.extrapolated = j.at("peaks_extrapolated").get<bool>();
   s.burst_utilisation = j.at("burst_utilisation").get<double>();
   s.safe_pressure_kPa = j.at("safe_pressure_kPa").get<double>();

@@ -65,7 +65,10 @@ json evaluate_rra_fem(const StudySpec& spec, const fem::RraSceneSpec& scene) {
   out["tube_max_stretch"] = last.tube_max_stretch;
   out["tube_max_principal_stress_MPa"] = last.tube_max_principal_stress_MPa;
   out["tube_max_log_strain"] = last.tube_max_log_strain;
-  double utilisation = criteria_ab(scene.tube_material, last.tube_max_principal_stress_MPa, last.tube_max_stretch,
+  out["tube_averaged_stretch"] = last.averaged.stretch;
+  out["tube_averaged_stress_MPa"] = last.averaged.stress_MPa;
+  // Criteria (a), (b) on the ball averages: the point values above sit at the singular groove lip.
+  double utilisation = criteria_ab(scene.tube_material, last.averaged.stress_MPa, last.averaged.stretch,
                                    spec.safety_factor);
   out["limit_pressure_kPa"] = nullptr;
   if (r.path.outcome == fem::PathOutcome::limit_point) {

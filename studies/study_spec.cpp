@@ -19,7 +19,8 @@ using nlohmann::json;
 std::vector<std::string> scalar_outputs(const std::string& scene, const std::string& model) {
   if (scene == "rra")
     return {"extension_mm", "mass_g", "reached_pressure_kPa", "tube_max_stretch", "tube_max_principal_stress_MPa",
-            "tube_max_log_strain", "burst_utilisation", "limit_pressure_kPa"};
+            "tube_max_log_strain", "tube_averaged_stretch", "tube_averaged_stress_MPa", "burst_utilisation",
+            "limit_pressure_kPa"};
   std::vector<std::string> out{"bending_deg", "normalised_bending", "pressure_for_target_kPa", "mass_g",
                                "reached_pressure_kPa", "tip_x_mm", "tip_z_mm", "burst_utilisation"};
   if (model == "rod") out.insert(out.end(), {"tube_max_stretch", "sheath_max_stretch"});

@@ -12,6 +12,7 @@
 #include "engine/design/search_log.hpp"
 #include "engine/output_files.hpp"
 #include "objectives/cell_rod_evaluation.hpp"
+#include "objectives/fit_range.hpp"
 #include "fem/core/json_reader.hpp"
 
 namespace softarm::engine {
@@ -184,6 +185,7 @@ std::optional<objectives::CellRodEvaluation> verify_on_cells(const DesignConfig&
   std::cout << "  payload " << fixed(m.payload_kg, 3) << " kg (search model " << fixed(searched.payload_kg, 3)
             << " kg), lifted at " << fixed(m.payload_lift_pressure_kPa, 1) << " kPa; heavier: " << m.payload_note << "\n";
   print_constraints(constraints_of(config, m, ref_strain));
+  std::cout << "  " << objectives::check_fit_range(m, make_candidate(config, x).tube).words << "\n";
   std::cout << "  verdict on the accurate model: " << (all_met(config, m, ref_strain) ? "every requirement met" : "NOT every requirement met") << "\n";
   return v;
 }
@@ -259,7 +261,8 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
 
   const double ref_strain =
       objectives::durability_reference_log_strain(config.requirements.durability_reference_pressure_kPa,
-                                                  config.model.rra_mesh_level);
+                                                  config.model.rra_mesh_level,
+                                                  config.model.peak_averaging_radius_mm);
   std::cout << "durability reference: thesis RRA at " << config.requirements.durability_reference_pressure_kPa
             << " kPa, peak log strain " << fixed(ref_strain, 4) << " (lasted "
             << config.requirements.durability_reference_cycles << " cycles)\n";
@@ -391,7 +394,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
   finer.rra_mesh_level = config.check.rra_mesh_level + 1;
   run.finer_peaks = objectives::evaluate_arm(make_candidate(config, run.optimum_x), finer);
   run.finer_reference_strain = objectives::durability_reference_log_strain(
-      config.requirements.durability_reference_pressure_kPa, finer.rra_mesh_level);
+      config.requirements.durability_reference_pressure_kPa, finer.rra_mesh_level, finer.peak_averaging_radius_mm);
   std::cout << "local peaks one RRA mesh level finer (level " << finer.rra_mesh_level << "): burst utilisation "
             << fixed(run.finer_peaks.burst_utilisation, 3) << " (" << run.finer_peaks.burst_governing << ") vs "
             << fixed(run.check.burst_utilisation, 3) << "; durability strain ratio "

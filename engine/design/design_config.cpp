@@ -259,8 +259,14 @@ DesignConfig read_design_config(const nlohmann::json& document) {
     c.search_margin = 0.01 * sf.number("search_margin_percent", 1.0, Range::closed(0, 50),
                                        "every constraint must hold with this margin (% of its limit) on the search "
                                        "model, so that the re-check at the check fidelity still meets it");
+    const double radius = sf.number("peak_averaging_radius_mm", fem::kDefaultPeakAveragingRadius_mm,
+                                    Range::closed(0.05, 20),
+                                    "criteria (a), (b) and the durability strain read the tube's peaks as averages over a "
+                                    "ball of this radius where they are largest (a point value at the groove lip is "
+                                    "singular: docs/definitions.md, Peak averaging radius)");
     sf.finish();
     c.model.safety_factor = c.check.safety_factor = factor;
+    c.model.peak_averaging_radius_mm = c.check.peak_averaging_radius_mm = radius;
   }
   {
     auto o = root.object("optimiser", "algorithm and budget");

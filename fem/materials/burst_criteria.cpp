@@ -4,6 +4,8 @@
 
 namespace softarm::fem {
 
+double trusted_stretch_limit(const Material& m) { return 1 + m.elongation_at_break; }
+
 BurstUtilisation burst_utilisation(const Material& m, double max_principal_stress_MPa, double max_principal_stretch,
                                    double safety_factor) {
   BurstUtilisation u;

@@ -51,9 +51,10 @@ RraCalibration calibrate_rra(const RraSceneSpec& spec) {
     c.force_factor.pressure_kPa.push_back(p.pressure_kPa);
     c.force_factor.factor.push_back(f1);
     c.mean_stretch.push_back(1 + p.extension_mm / spec.design.length_mm);
-    c.peak_stretch.push_back(p.tube_max_stretch);
-    c.peak_log_strain.push_back(p.tube_max_log_strain);
-    c.peak_stress_MPa.push_back(p.tube_max_principal_stress_MPa);
+    c.peak_stretch.push_back(p.averaged.stretch);
+    c.peak_log_strain.push_back(p.averaged.log_strain);
+    c.peak_stress_MPa.push_back(p.averaged.stress_MPa);
+    c.point_stretch.push_back(p.tube_max_stretch);
   }
   return c;
 }
@@ -62,13 +63,14 @@ RraCalibration::Peaks RraCalibration::peaks_at(double l) const {
   Peaks out;
   if (mean_stretch.empty()) return out;
   // Rest state (λ̄ = 1, no peaks) prepended, then piecewise linear in λ̄.
-  std::vector<double> x{1.0}, a{1.0}, b{0.0}, s{0.0};
+  std::vector<double> x{1.0}, a{1.0}, b{0.0}, s{0.0}, q{1.0};
   for (std::size_t i = 0; i < mean_stretch.size(); ++i)
     if (mean_stretch[i] > x.back()) {
       x.push_back(mean_stretch[i]);
       a.push_back(peak_stretch[i]);
       b.push_back(peak_log_strain[i]);
       s.push_back(peak_stress_MPa[i]);
+      q.push_back(point_stretch[i]);
     }
   if (x.size() < 2) return out;
   std::size_t i = 1;
@@ -77,8 +79,9 @@ RraCalibration::Peaks RraCalibration::peaks_at(double l) const {
   out.stretch = a[i - 1] + t * (a[i] - a[i - 1]);
   out.log_strain = b[i - 1] + t * (b[i] - b[i - 1]);
   out.stress_MPa = s[i - 1] + t * (s[i] - s[i - 1]);
+  out.point_stretch = q[i - 1] + t * (q[i] - q[i - 1]);
   out.extrapolated = l > x.back();
-  if (l < 1.0) out = {1.0, 0.0, 0.0, false};  // a compressed actuator: no tensile peak from pressure
+  if (l < 1.0) out = {1.0, 0.0, 0.0, 1.0, false};  // a compressed actuator: no tensile peak from pressure
   return out;
 }
 

@@ -26,7 +26,8 @@ namespace softarm::fem {
 struct RraCalibration {
   ForceFactor force_factor;
   std::vector<double> pressure_kPa, fem_extension_mm, rod_extension_mm;  // rod_extension: uncalibrated (c = 1)
-  std::vector<double> mean_stretch, peak_stretch, peak_log_strain, peak_stress_MPa;
+  std::vector<double> mean_stretch, peak_stretch, peak_log_strain, peak_stress_MPa;  // averaged (RraCurvePoint::averaged)
+  std::vector<double> point_stretch;  // the single Gauss point's (the groove lip's): where the law is most extrapolated
   bool limit_point = false;       // the FEM path met a limit point (ballooning)
   double last_pressure_kPa = 0;   // highest pressure the FEM path reached
   std::string outcome;            // the FEM path's outcome, in words
@@ -34,7 +35,8 @@ struct RraCalibration {
   int dofs = 0;
 
   struct Peaks {
-    double stretch = 1, log_strain = 0, stress_MPa = 0;
+    double stretch = 1, log_strain = 0, stress_MPa = 0;  // averaged over the ball (the criteria's)
+    double point_stretch = 1;                            // at one Gauss point, the groove lip
     bool extrapolated = false;  // λ̄ beyond the FEM path's last state
   };
   /// The FEM's local peaks at the mean axial stretch λ̄ (piecewise linear; linear extrapolation beyond).

@@ -5,6 +5,7 @@
 
 #include "fem/assembly/energy_problem.hpp"
 #include "fem/mesh/rra_mesher.hpp"
+#include "fem/post/region_average.hpp"
 
 namespace softarm::fem {
 namespace {
@@ -26,7 +27,7 @@ DirichletConstraints rra_constraints(const Mesh& mesh) {
 }
 
 RraCurvePoint curve_point(const PressureState& s, const Mesh& mesh, const ElasticForm& elastic,
-                          const Vector& x, int free_node, double extension_sign) {
+                          const Vector& x, int free_node, double extension_sign, double averaging_radius_mm) {
   RraCurvePoint p;
   p.pressure_kPa = s.pressure_kPa;
   p.chamber_volume_mm3 = s.chamber_volume_mm3;
@@ -45,6 +46,15 @@ RraCurvePoint curve_point(const PressureState& s, const Mesh& mesh, const Elasti
       p.ring_max_principal_stress_MPa = std::max(p.ring_max_principal_stress_MPa, r.max_principal_cauchy_MPa);
     }
   }
+  std::vector<double> stretch, stress, log_strain;
+  for (const auto& r : results) {
+    stretch.push_back(r.mean_principal_stretch);
+    stress.push_back(r.mean_principal_cauchy_MPa);
+    log_strain.push_back(r.mean_principal_log_strain);
+  }
+  p.averaged.stretch = max_region_average(mesh, stretch, tube, averaging_radius_mm).value;
+  p.averaged.stress_MPa = max_region_average(mesh, stress, tube, averaging_radius_mm).value;
+  p.averaged.log_strain = max_region_average(mesh, log_strain, tube, averaging_radius_mm).value;
   return p;
 }
 }  // namespace
@@ -107,7 +117,7 @@ RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress) {
   path.node_dimension = 2;  // (r, z)
   out.path = run_pressure_path(problem, {chamber.get()}, load, x, path, [&](const PressureState& s, const Vector& xs) {
     if (!s.is_output) return;
-    out.curve.push_back(curve_point(s, mesh, *elastic, xs, free_node, sign));
+    out.curve.push_back(curve_point(s, mesh, *elastic, xs, free_node, sign, spec.peak_averaging_radius_mm));
     if (progress) progress(out.curve.back());
   });
   // A path that stopped early also reports the last state it reached: x is the state of the
@@ -117,7 +127,7 @@ RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress) {
     PressureState last = out.path.history.back();
     for (const PressureState& s : out.path.beyond_limit)
       if (s.pressure_kPa > last.pressure_kPa) last = s;
-    if (!last.is_output) out.curve.push_back(curve_point(last, mesh, *elastic, x, free_node, sign));
+    if (!last.is_output) out.curve.push_back(curve_point(last, mesh, *elastic, x, free_node, sign, spec.peak_averaging_radius_mm));
   }
   out.timings.solve_s = since(t_solve);
   out.timings.assembly_s = problem.assembly_seconds();

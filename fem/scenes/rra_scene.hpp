@@ -10,6 +10,7 @@
 
 #include "fem/forms/elastic_form.hpp"
 #include "fem/io/abaqus_writer.hpp"
+#include "fem/materials/burst_criteria.hpp"
 #include "fem/materials/material.hpp"
 #include "fem/mesh/mesh.hpp"
 #include "fem/mesh/rra_design.hpp"
@@ -24,6 +25,7 @@ struct RraSceneSpec {
   int element_order = 2;  // 1: Q1/P0, 2: Q2/P1
   VolumetricTreatment treatment = VolumetricTreatment::projected_dilatation;
   PressurePathSpec path;
+  double peak_averaging_radius_mm = kDefaultPeakAveragingRadius_mm;  // RraCurvePoint::averaged
 };
 
 /// One state of the pressure–extension curve.
@@ -31,6 +33,12 @@ struct RraCurvePoint {
   double pressure_kPa = 0, extension_mm = 0, chamber_volume_mm3 = 0, pv_stiffness_kPa_per_mm3 = 0;
   double tube_max_stretch = 1, tube_max_principal_stress_MPa = 0, ring_max_principal_stress_MPa = 0;
   double tube_max_log_strain = 0;
+  /// The tube's peaks as the criteria read them: the largest averages over a ball of radius
+  /// RraSceneSpec::peak_averaging_radius_mm (the tube_max_* above are single Gauss points, at
+  /// the groove lip's singular corner; they are reported, never judged).
+  struct AveragedPeaks {
+    double stretch = 1, stress_MPa = 0, log_strain = 0;
+  } averaged;
   int newton_iterations = 0;
 };
 

@@ -182,6 +182,11 @@ RraSceneSpec read_rra(JsonReader& root, ModelRequest& model_request) {
   const auto treatment = mesh.choice("volumetric_treatment", "projected_dilatation", {"projected_dilatation", "pointwise"},
                                      "projected_dilatation avoids locking; pointwise is kept for comparison only");
   spec.treatment = treatment == "pointwise" ? fem::VolumetricTreatment::pointwise : fem::VolumetricTreatment::projected_dilatation;
+  spec.peak_averaging_radius_mm =
+      mesh.number("peak_averaging_radius_mm", kDefaultPeakAveragingRadius_mm, Range::closed(0.05, 20),
+                  "the tube's peak stretch, stress and log strain (burst criteria a, b; durability) are averages "
+                  "over a ball of this radius where they are largest: a point value at the groove lip is singular "
+                  "(docs/definitions.md, Peak averaging radius)");
   mesh.finish();
 
   model_request = read_model(root, false);
