@@ -45,7 +45,7 @@
 // Measured 2026-11-23, Hex20 at 3×3×3 and at 2×2×2 points (--elements 20,20r --lengths 32,64
 // --levels 1 --variants strict,loose,ccx, medians of 3, one thread, a level-2 3CA solve on the
 // other core); ccx / softarm loose with the C3D20R rule: RRA 32 mm 3.4×, RRA 64 mm 3.2×,
-// 3CA 32 mm 3.0×, 3CA 64 mm 3.4× (README, "The 3CA and SPL scenes").
+// 3CA 32 mm 3.0×, 3CA 64 mm 3.4× (docs/performance.md, With ccx's own integration rule).
 #include <unistd.h>
 
 #include <algorithm>

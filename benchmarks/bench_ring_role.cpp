@@ -1,5 +1,5 @@
-// What the ABS rings do in the 3D 3CA, and what the rod sees of it (README,
-// "Where the rod's error comes from"). The thesis 3CA (TcaDesign defaults,
+// What the ABS rings do in the 3D 3CA, and what the rod sees of it (docs/reduced-model.md,
+// Where the rod's error comes from; What the rings do). The thesis 3CA (TcaDesign defaults,
 // Dragon Skin 30 throughout), 3D Hex20/P1 at 2x2x2 points, level 1, under
 //   - its own weight across the axis, unpressurised: the sag (deg),
 //   - ten times its weight along the axis: the tip's stretch (mm),

@@ -1,5 +1,6 @@
-// The rod's bending error on optimised designs, and what mends it (README,
-// "Check and correct"): the distal segment of each design bent by
+// The rod's bending error on optimised designs, and what mends it (docs/reduced-model.md, Where
+// the rod's error comes from; docs/design-job.md, Check and correct on the 3D segment): the distal
+// segment of each design bent by
 //   - the search's rod (objectives::segment_rod's section, 17 nodes),
 //   - the same rod with RodPiece::force_factor set to the lone RRA's
 //     axisymmetric FEM calibration up to the 3D pressure (fem::calibrate_rra),
@@ -11,9 +12,9 @@
 // pressure, or their limit point). The designs are the thesis', the thesis
 // geometry with a Dragon Skin 20 sheath, and the optimised designs of the main
 // job (rounds 0 and 1, and the other machine's optimum). Without --with-3d the
-// 3D column is the one these runs recorded (README table), and the last lines
-// give the ratio 3D/rod per design: check and correct's zeroth-order factor
-// carries from one design to the next only as far as that ratio is constant.
+// 3D column is the one these runs recorded (the table in docs/reduced-model.md, Where the rod's
+// error comes from), and the last lines give the ratio 3D/rod per design: check and correct's
+// zeroth-order factor carries from one design to the next only as far as that ratio is constant.
 //
 //   build/benchmarks/bench_rod_error [--with-3d] [--design N] [--stiffness] [--cell-rod]
 //
@@ -29,9 +30,9 @@
 // (Hex20/P1 at 27 points, level 1 with level 4's layers; ~10 minutes per design) to the same
 // pressure, for the cell rod and the 3D check's 8-point mesh to be measured against.
 //
-// --stiffness measures what the confined rod still misses (README): each
-// design's distal segment under ten times its weight along its axis, by the 3D
-// model (about a minute each) and by both rods; k = rod/3D stretch; then the
+// --stiffness measures what the confined rod still misses (docs/reduced-model.md, What the
+// confined rod still misses): each design's distal segment under ten times its weight along its
+// axis, by the 3D model (about a minute each) and by both rods; k = rod/3D stretch; then the
 // confined rod with every fibre stiffened by its k, at the recorded 3D pressure.
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,8 @@
 // definitions §4), at the reduced model's fidelity: the finite-strain rod of
 // fem/reduced for bending, pose and payload; the axisymmetric FEM of each
 // segment's RRA for what the rod cannot see (local peaks at the groove lips,
-// a ballooning limit point). The 3D FEM is the check (issue 3; see README).
+// a ballooning limit point). The 3D FEM is the check (issue 3;
+// docs/design-on-the-accurate-model.md).
 //
 // Scenes (our definitions, overridable in the requirements config):
 // - bending per segment: each 3CA alone, top clamped, chambers 2 and 3 at the

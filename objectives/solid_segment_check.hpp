@@ -10,7 +10,8 @@
 //   4's element layers, under a planar rod (fem/scenes/tca_cell.hpp). Against the fidelity ladder's
 //   reference mesh (the whole segment, Hex20/P1 with level 4's layers) it is within 3.0 % along the
 //   thesis 3CA's curve and within 3.3 % along the main job's round-0 optimum's; on round 1's (Dragon
-//   Skin 20, thin rings) +7.9 % at the working pressure and −12 % below it (README, "The cell rod");
+//   Skin 20, thin rings) +7.9 % at the working pressure and −12 % below it (docs/cell-rod.md, On other
+//   designs; with chord lids: docs/cell-rod.md, Experiments not adopted);
 // - the whole segment in 3D, Hex20/P1 at 2×2×2 Gauss points, mesh level 1, half model: within 0.85 %
 //   of the reference on the thesis 3CA by two level-1 errors cancelling, but 17 % short and ballooning
 //   early on the round-0 optimum, whose walls are thinner, and 16 % short on round 1's.
@@ -71,7 +72,7 @@ void use_design_check_path(fem::StepSettings& steps, fem::LimitPointSettings& li
 enum class SolidCheckModel {
   cell_rod,      // the cell rod (fem/scenes/tca_cell.hpp): ring-pitch cells of Hex20/P1 at 27 points with
                  // level 4's layers, the fidelity ladder's rung; within 3.3 % of the ladder's reference mesh on
-                 // the thesis 3CA and on the main job's round-0 optimum (README)
+                 // the thesis 3CA and on the main job's round-0 optimum (docs/cell-rod.md, On other designs)
   hex20_reduced  // the whole segment in 3D, Hex20/P1 at 2×2×2 points, level 1 (solid_segment_scene)
 };
 

@@ -188,7 +188,7 @@ StudySpec read_study(const json& document, const std::filesystem::path& base_dir
     throw InputError("scene.scene", "value 'spl': studies run the rra and tca scenes (the arm is `softarm design`'s)");
   s.model = root.choice("model", base.scene == "tca" ? "rod" : "fem", {"fem", "rod"},
                         "fem: the scene's finite-element model; rod: the reduced rod of fem/reduced (seconds per "
-                        "3CA instead of minutes; README, reduced model validation)");
+                        "3CA instead of minutes; docs/reduced-model.md, Checked against the FEM)");
   s.rod_nodes = root.integer("rod_nodes_per_segment", 17, Range::closed(5, 401), "rod nodes (model rod)");
   s.safety_factor = root.number("safety_factor", 1.5, Range::closed(1, 10), "burst criteria (a), (b) of spec §4");
   s.axes = read_sweep(root);

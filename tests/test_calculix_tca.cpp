@@ -15,7 +15,7 @@
 // Tolerances. The two engines' elements differ (C3D20R: serendipity, reduced
 // integration; softarm: Lagrange Hex27 with projected dilatation), and the
 // silicone bonded to almost rigid rings at 90° corners is a stress singularity
-// that converges slowly (README, RRA mesh convergence), so the gap is a
+// that converges slowly (docs/mesh-convergence.md, The RRA), so the gap is a
 // discretisation difference that shrinks with refinement. Measured (15 kPa,
 // mean free-face displacement, mm; bench_ccx_3d for level 2):
 //   RRA, level 1: u_z softarm −1.01783, ccx −0.97951 (3.8 %);

@@ -285,8 +285,8 @@ TEST_CASE("the RRA extension measure is the thesis RRA's FEM extension on the th
   const engine::DesignConfig c = engine::read_design_config(thesis_requirements());
   const objectives::ArmMeasures m = objectives::evaluate_arm(engine::make_candidate(c, engine::baseline_values(c)), c.model);
   // The distal segment's RRA is the thesis RRA (Table 7); its axisymmetric FEM (level 1) extends
-  // 76.67 mm at 206.8 kPa (README). The calibrated rod interpolates the factor between the FEM's
-  // output pressures, so it matches to the interpolation's accuracy.
+  // 76.67 mm at 206.8 kPa (docs/validation.md, The thesis RRA). The calibrated rod interpolates the
+  // factor between the FEM's output pressures, so it matches to the interpolation's accuracy.
   fem::RraSceneSpec rra;
   rra.tube_material = fem::builtin_material("dragon_skin_30", "test");
   rra.ring_material = fem::builtin_material("digital_abs", "test");

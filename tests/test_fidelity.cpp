@@ -24,7 +24,7 @@ json thesis_scene(const std::string& file) {
   return load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/" + file);
 }
 
-// The ladder's reference for the RRA: Q2/P1 level 4 (bench_rra_levels, README).
+// The ladder's reference for the RRA: Q2/P1 level 4 (bench_rra_levels; docs/mesh-convergence.md, The RRA).
 constexpr double kRraReferenceMm = 77.139;
 
 }  // namespace
@@ -139,7 +139,8 @@ TEST_CASE("the RRA ladder's measured errors hold for its cheap levels", "[fideli
 
 TEST_CASE("the 3CA ladder's rod error holds on the thesis 3CA", "[fidelity]") {
   // The reference, 3D Hex20 level 1 with level 4's layers (configs/convergence/tca_thesis_300kPa.json,
-  // 429 s): 47.357 deg at 150 kPa, where the rod is furthest from it; 90 deg at 277.93 kPa (README).
+  // 429 s): 47.357 deg at 150 kPa, where the rod is furthest from it; 90 deg at 277.93 kPa
+  // (docs/mesh-convergence.md, Layers to level 4: the whole 3CA).
   json tca = thesis_scene("convergence/tca_thesis_300kPa.json");
   tca.erase("mesh");
   tca["model"] = {{"fidelity", "fast"}};

@@ -171,7 +171,8 @@ TEST_CASE("where dp/dV is blind to it, the tangent's lowest mode finds the limit
   CHECK(r.path.outcome == PathOutcome::limit_point);
   CHECK(r.path.diagnosis.find("local limit point") != std::string::npos);
   CHECK(r.path.lowest_eigenvalue_ratio < spec.path.limit.lowest_mode_fraction);
-  CHECK(r.path.reached_pressure_kPa == Approx(30.651).epsilon(2e-3));  // volume control's maximum (README)
+  // Volume control's maximum (docs/model.md, Chamber-volume control).
+  CHECK(r.path.reached_pressure_kPa == Approx(30.651).epsilon(2e-3));
 }
 
 TEST_CASE("the Ogden tube that CalculiX stalls on near 56 kPa is carried on", "[rra][limit]") {

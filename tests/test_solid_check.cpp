@@ -5,8 +5,8 @@
 // The segment is the 32 mm 3CA of configs/convergence/tca_32mm.json, chambers
 // 2 and 3 at 200 kPa without gravity, where `softarm simulate` with
 // mesh.serendipity and mesh.reduced_integration (Hex20 at 2×2×2 points, level 1)
-// measured 9.963° at 200 kPa and 5° at 103.54 kPa (README, 3CA mesh
-// convergence). The check must land on the same numbers through its own
+// measured 9.963° at 200 kPa and 5° at 103.54 kPa (docs/mesh-convergence.md,
+// The 32 mm cut). The check must land on the same numbers through its own
 // set-up, so a chamber, a sign, a symmetry or an element mixed up on the way
 // fails it (chamber 1 instead of 2 and 3 bends the other way; the 27-point rule
 // gives 9.217°). The rod's path is a given polyline here: the check

@@ -100,7 +100,7 @@ TEST_CASE("Rigid rings make a pressurised cell stretch and bend, silicone ones b
                              << s.stretch << ", " << s.curvature_per_mm * 180 / M_PI << " deg/mm");
   CHECK(r.pressure_kPa == Approx(20));
   // Towards the unpressurised chamber, and longer: the rings hold the chambers' width, the
-  // squeezed wall lengthens (README, "Where the rod's error comes from").
+  // squeezed wall lengthens (docs/reduced-model.md, What the rings do).
   CHECK(r.curvature_per_mm > 0);
   CHECK(r.stretch > 1.005);
   CHECK(std::abs(s.stretch - 1) < 0.05 * (r.stretch - 1));
@@ -177,7 +177,8 @@ TEST_CASE("A ring-pitch cell bends as the inside of a long 3CA does, at the 3D m
   // gap, as the 3D mesh at level 2L has, and L through the ring, as at level L: its bend lies between
   // the two meshes'. Measured: 0.7998 °/pitch at 75 kPa against 0.7932 (level 1) and 0.8097 (level 2),
   // 1.6360 at 150 kPa against 1.6037 and 1.6675. So an "equal mesh" comparison of a cell rod at level L
-  // with the 3D model at level L sets a finer model against a coarser one (README, "Matched layers").
+  // with the 3D model at level L sets a finer model against a coarser one (docs/cell-rod.md, Matched
+  // layers).
   const double p = softarm::test::untapered_3ca(6, 1, 2).design.actuator.pitch();
   std::vector<std::vector<double>> inside;  // per 3D level, per output
   for (int level : {1, 2}) {

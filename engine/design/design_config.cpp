@@ -58,8 +58,8 @@ objectives::EvaluationSettings read_model(fem::JsonReader& m, const objectives::
                                       what + ": rod nodes per 3CA segment");
   s.ring_confinement = m.boolean("ring_confinement", defaults.ring_confinement,
                                  what + ": the rod's 3CA sections let the rings hold the tube wall (confined wall "
-                                        "law, chamber force on the rings' inner area; README \"Where the rod's error "
-                                        "comes from\")");
+                                        "law, chamber force on the rings' inner area; docs/reduced-model.md, "
+                                        "Ring-confined walls)");
   m.finish();
   return s;
 }
@@ -88,7 +88,8 @@ DesignConfig read_design_config(const nlohmann::json& document) {
     q.max_mass_kg = r.number("max_mass_kg", 2.0, Range::positive(), "weight limit, connectors included (kg)");
     q.length_m = r.number("length_m", 0.6, Range::positive(), "arm length, shoulder to tip (m): fixes the segment length");
     q.min_payload_kg = r.number("min_payload_kg", 0.5, Range::non_negative(),
-                                "payload capacity at the tip (kg; definition: README, spec §4)");
+                                "payload capacity at the tip (kg; definition: docs/definitions.md, The "
+                                "definitions; spec §4)");
     q.bending_per_segment_deg = r.number("bending_per_segment_deg", 90, Range::open(0, 360),
                                          "bending angle each segment must reach at the working pressure (deg)");
     q.max_pressure_kPa = r.number("max_pressure_kPa", 344.7, Range::open(0, 2000),
@@ -207,7 +208,9 @@ DesignConfig read_design_config(const nlohmann::json& document) {
     auto m = root.object("model", "search fidelity (the reduced rod model + each segment's RRA FEM)");
     c.model = read_model(m, objectives::EvaluationSettings{}, "search");
     objectives::EvaluationSettings fine;
-    fine.rra_mesh_level = c.model.rra_mesh_level;  // the local peaks' definition (README); level + 1 is reported as a sensitivity
+    // The local peaks' definition (docs/definitions.md, Peak averaging radius); level + 1 is reported
+    // as a sensitivity.
+    fine.rra_mesh_level = c.model.rra_mesh_level;
     fine.pressure_steps = 24;
     fine.rod_nodes_per_segment = 49;
     fine.ring_confinement = c.model.ring_confinement;  // the same rod, finer

@@ -11,7 +11,8 @@ const std::vector<DesignMeasure>& design_measures() {
   using S = objectives::EvaluationSettings;
   static const std::vector<DesignMeasure> measures = {
       {"mass_kg", "arm mass, connectors included", [](const M& m, const S&, double) { return m.mass_kg; }},
-      {"payload_kg", "payload capacity (lift to horizontal, README)", [](const M& m, const S&, double) { return m.payload_kg; }},
+      {"payload_kg", "payload capacity (lift to horizontal; docs/definitions.md, The definitions)",
+       [](const M& m, const S&, double) { return m.payload_kg; }},
       {"length_mm", "arm length, shoulder to tip", [](const M& m, const S&, double) { return m.length_mm; }},
       {"min_bending_deg", "smallest segment bending angle at the working pressure",
        [](const M& m, const S&, double) { return m.min_bending_deg; }},

@@ -356,7 +356,7 @@ void write_design_outputs(const DesignRun& run) {
                 "axisymmetric FEM (level " + std::to_string(c.model.rra_mesh_level) +
                 ") for the local peaks and ballooning. Against the 3D FEM of the thesis 3CA (Hex20 with level 4's "
                 "element layers, the fidelity ladder's reference), the rod reaches 90 deg at 297.2 kPa where the 3D "
-                "model does at 277.9 kPa, and bends 21 % less at 150 kPa (README, fidelity ladder).");
+                "model does at 277.9 kPa, and bends 21 % less at 150 kPa (docs/fidelity-ladder.md, The 3CA).");
   if (run.solid_check()) {
     const auto& sc = *run.solid_check();
     doc.paragraph("3D check of the optimum (check.solid_segment = " + std::to_string(sc.segment) + "): " + sc.element +

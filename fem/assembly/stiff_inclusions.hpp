@@ -5,7 +5,8 @@
 // spurious strain (a few tenths of a per cent for a few degrees of bend per step) dwarfs
 // every silicone force. The residual then grows 10³–10⁴× after a full step, the line search
 // cuts it, and the ring's geometric stiffness under that spurious stress makes the next
-// tangent indefinite (README, "Why a predicted state has a negative eigenvalue").
+// tangent indefinite (docs/performance.md, Why a predicted state has a negative eigenvalue that
+// its equilibrium has not).
 //
 // So on each inclusion (a connected group of stiff elements) the update applies the
 // group's best-fit infinitesimal rotation ω as the finite rotation exp([ω]×) (Rodrigues),

@@ -3,7 +3,7 @@
 // its type, unit (in the key), default and valid range, values are validated
 // as they are read, and finish() rejects keys nobody declared (typos). The
 // declarations double as documentation: describe() lists them for
-// `softarm schema` and the README.
+// `softarm schema` (README.md, Configs and `softarm schema`).
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>

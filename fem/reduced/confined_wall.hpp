@@ -11,8 +11,8 @@
 //  - the chamber's volume per reference length, V' = π(R_i² λ − R_i² + R_c²),
 //    grows at dV'/dλ = π R_i² at any λ, so the pressure's work makes an axial
 //    force p·π R_i² on the ringed length, not p·π R_c² (the cap's area).
-// Evidence (README "Where the rod's error comes from"): the thesis 3CA in 3D with
-// rings of tube silicone instead of ABS bends 0.04° at 50 kPa against 16.2°.
+// Evidence (docs/reduced-model.md, Where the rod's error comes from; What the rings do): the
+// thesis 3CA in 3D with rings of tube silicone instead of ABS bends 0.04° at 50 kPa against 16.2°.
 #include "fem/materials/hyperelastic_law.hpp"
 #include "fem/reduced/fibre_law.hpp"
 

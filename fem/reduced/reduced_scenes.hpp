@@ -3,7 +3,8 @@
 // fidelity ladder, fem/scenes/fidelity.hpp): the same scene specs as the FEM
 // runners, answered by the rods of arm_rod.hpp (planar) and spatial_rod.hpp.
 //   rra: the lone RRA's extension by the rod with an uncalibrated chamber force
-//        (the FEM-calibrated factor needs the FEM itself; README, reduced model);
+//        (the FEM-calibrated factor needs the FEM itself; docs/reduced-model.md,
+//        Calibration on the lone RRA);
 //   tca: the 3CA as one rod piece, top clamped: by the planar rod where the
 //        loads lie in the x–z plane (chambers 2 and 3 at equal pressure, gravity
 //        with no y part: the measured rung of the fidelity ladder), by the
@@ -41,7 +42,8 @@ struct ReducedTcaResult {
   double mass_kg = 0, seconds = 0;
   int nodes = 0;
 };
-/// `nodes`: rod nodes along the 3CA (17 by default: converged to 0.1 % on the thesis 3CA, README).
+/// `nodes`: rod nodes along the 3CA (17 by default: converged to 0.1 % on the thesis 3CA; the node
+/// count's convergence is test [reduced], docs/testing.md, The design job).
 ReducedTcaResult run_reduced_tca(const TcaSceneSpec& spec, int nodes = 17);
 
 struct ReducedSplResult {
@@ -54,7 +56,8 @@ struct ReducedSplResult {
   int nodes = 0;
 };
 /// `nodes_per_segment`: rod nodes along each 3CA segment; `cells`: cells across each section
-/// (the defaults put the thesis pose within 0.1 % of the finest; README, reduced model).
+/// (the defaults put the thesis pose within 0.1 % of the finest; docs/reduced-model.md, The SPL
+/// pose by the spatial rod).
 ReducedSplResult run_reduced_spl(const SplSceneSpec& spec, int nodes_per_segment = 17, int cells = 24);
 
 }  // namespace softarm::fem

@@ -133,7 +133,8 @@ std::vector<RodPiece> spl_rod_pieces(const SplDesign& d, const Material& connect
     return p;
   };
   // No calibration factor inside a 3CA: the core stops the chamber bulging between the
-  // rings, which is what the lone RRA's factor measures (README, reduced model).
+  // rings, which is what the lone RRA's factor measures (docs/reduced-model.md, Calibration on the
+  // lone RRA).
   const auto segment_piece = [&](int n) {
     RodPiece p;
     p.kind = RodPiece::Kind::tca;

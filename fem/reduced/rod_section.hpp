@@ -10,7 +10,8 @@
 // sheath's envelope (the Minkowski sum of the axes' triangle and a disc of
 // radius r_o + t_s), so the section is a smooth function of the geometry.
 //
-// What the section leaves out (our definitions, README "reduced model"):
+// What the section leaves out (our definitions: docs/definitions.md, The definitions, row
+// "reduced model"):
 // - rings carry no axial load: they are discrete, in series with silicone gaps,
 //   so the tube wall and the core around a ring count as silicone for stiffness;
 //   the rings' mass is smeared along the segment;

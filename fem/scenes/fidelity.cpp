@@ -17,8 +17,9 @@ std::string percent(double x) {
 
 // Thesis RRA, extension at 206.8 kPa; reference Q2/P1 level 4 (77.139 mm, 350,178 dofs, 284 s):
 // bench_rra_levels and bench_reduced_model. Times on one thread: Q2/P1 level 1 idle (0.56–0.77 s,
-// README); the others from one bench_rra_levels run beside another solve, as ratios to level 1
-// there (Q1/P0 level 1: 0.25×, Q2/P1 level 3: 68×) applied to the idle 0.6 s.
+// docs/validation.md, The thesis RRA); the others from one bench_rra_levels run beside another
+// solve, as ratios to level 1 there (Q1/P0 level 1: 0.25×, Q2/P1 level 3: 68×) applied to the idle
+// 0.6 s.
 FidelityLadder rra_ladder() {
   const std::string what = "extension of the thesis RRA at 206.8 kPa";
   return {"rra",
@@ -31,7 +32,8 @@ FidelityLadder rra_ladder() {
 
 // Thesis 3CA, two chambers with gravity; reference 3D Hex20/P1 (27 points) with level 1's cross-
 // section and level 4's element layers, half model (173,574 dofs, 3.1 GB, 429 s to 300 kPa idle on both
-// threads; configs/convergence/tca_thesis_300kPa.json, README "Layers to level 4"): 90° at 277.93 kPa.
+// threads; configs/convergence/tca_thesis_300kPa.json; docs/mesh-convergence.md, Layers to level 4:
+// the whole 3CA): 90° at 277.93 kPa.
 // On the 32 mm cut the cross-section is converged at level 1 once the layers are fine (0.06 % at 4
 // layers) and the layers converge at order ~1 (a ring corner's singularity); over 2, 3 and 4 layers of
 // the whole 3CA Richardson (fem/post/richardson.hpp) puts the reference 2.2 % short in bending at 150 kPa
@@ -42,7 +44,7 @@ FidelityLadder rra_ladder() {
 // 3D models, the largest difference in degrees as a percentage of the reference there for the rod)
 // and the 90° pressure:
 // - the rod: 21.0 % (37.40° against 47.36° at 150 kPa), +6.9 % at 90° (297.2 kPa); on the main job's
-//   optimised designs it is 22-48 % off (README, "Where the rod's error comes from");
+//   optimised designs it is 22-48 % off (docs/reduced-model.md, Where the rod's error comes from);
 // - the cell rod (fem/reduced/cell_rod.hpp) on cells about rings 1, 15 and 30 and both ends through
 //   2 rings as end cells (fem/scenes/tca_end_cell.hpp), each Hex20/P1 at 27 points with level 4's
 //   layers (cells 8,943 dofs, ends 15,444; 34 s for the five side by side, one thread each, to 300 kPa,
@@ -56,8 +58,8 @@ FidelityLadder rra_ladder() {
 //   configs/convergence/tca_thesis_300kPa.json --end-rings 2 --compare <reference curve.csv>`;
 // - Hex20/P1 at 2×2×2 points, level 1: +0.85 % at 60 kPa, within 0.6 % above it; 90° at 278.77 kPa
 //   (+0.3 %). A cancellation: across the section the 2×2×2 rule is stiff, along the axis soft, and the
-//   two level-1 errors nearly cancel (32 mm cut, README "One direction at a time"); 202 s to the
-//   limit point (314 kPa), 120 s to 300 kPa, idle, both threads.
+//   two level-1 errors nearly cancel (32 mm cut: docs/mesh-convergence.md, One direction at a
+//   time); 202 s to the limit point (314 kPa), 120 s to 300 kPa, idle, both threads.
 // Left off, dominated by it (bending along the curve; 90° pressure; time): Hex20/P1 level 1 with level
 // 2's layers, the default before this version (−3.35 % at 300 kPa; 287.42 kPa, +3.4 %; 423 s to the
 // limit point), with level 3's layers (−1.3 %; 281.34 kPa, +1.2 %; 292 s to 300 kPa), Hex20/P1 level 2
@@ -68,8 +70,9 @@ FidelityLadder tca_ladder() {
           "3D Hex20/P1, level 1 with level 4's layers, half model (173,574 dofs; Richardson over the layers: "
           "~2 % short in bending at mid-curve, more near the limit point): 90° at 277.93 kPa",
           {{"reduced rod, 17 nodes", true, 0, 0, 21.0,
-            "bending angle along the curve (worst point; 90° pressure: 6.9 %); on other designs up to 48 % (README)", 0.05,
-            51},
+            "bending angle along the curve (worst point; 90° pressure: 6.9 %); on other designs up to 48 % "
+            "(docs/reduced-model.md, Where the rod's error comes from)",
+            0.05, 51},
            {"cell rod: 3 ring-pitch cells and both ends through 2 rings (3D, level 4 layers)", true, 1, 2, 1.4,
             "bending along the curve (90° pressure: 1.3 %); against the layers' Richardson estimate −1.1 % at "
             "150 kPa (47.92° against 48.43°), on the 90° pressure +0.9 to +4.7 % (271.8 to 262.0 kPa, order 1.21 "
@@ -87,12 +90,13 @@ FidelityLadder tca_ladder() {
 // factorisation with nnz(L) 674 M, 16.3 GB resident; 5,785 s on both threads, ~25 min of it beside a
 // build and other runs; 23 load steps, 115 Newton iterations). Level 2 (~2 M dofs) does not fit this
 // machine; on the 3CA the cross-section is converged at level 1 once the layers are fine, and the
-// layers converge at order ~1 (README, "Layers to level 4"). The tip with 1, 2 and 3 layers per band:
+// layers converge at order ~1 (docs/mesh-convergence.md, Layers beyond level 2; Layers to level 4:
+// the whole 3CA). The tip with 1, 2 and 3 layers per band:
 // (261.7, 299.6, 267.7), (238.7, 307.9, 277.0), (228.8, 310.1, 278.8) mm; the steps 26.1 and 10.3 mm
 // fit an order of ~0.7, which leaves this reference ~21-31 mm (order 1 to 0.7) from the converged tip,
 // 40 mm extrapolating each coordinate with its own order, so the errors below are lower bounds.
-// Errors: the tip's distance from the reference's over the reference tip's 476 mm travel (README,
-// "The 3CA and SPL scenes"):
+// Errors: the tip's distance from the reference's over the reference tip's 476 mm travel
+// (docs/fidelity-ladder.md, The SPL):
 // - Hex20/P1 level 1 with level 2's layers (configs/convergence/spl_thesis_pose_axial2.json, 2,845 s,
 //   the reference before this version): 10.3 mm, 2.2 %; joints 5.1 mm off on average.
 // - The cell rod on ring-pitch cells and end cells (fem/scenes/spl_cell_rod.hpp: 9 cells and 6 end cells
@@ -160,7 +164,9 @@ FidelityLadder spl_ladder() {
             228},
            {"3D Hex8/P0, level 1 (preview: locks in bending)", false, 1, 1, 68, "3CA bending at 344.7 kPa", 48, 66132},
            {"cell rod: 3 ring-pitch cells per segment and both ends through 2 rings (3D, level 4 layers)", true, 1, 2,
-            4.6, tip + " (joints 10.1 mm off on average; at equal mesh on a short SPL 2.3 %, README)" + richardson(18.7, 13.2),
+            4.6,
+            tip + " (joints 10.1 mm off on average; at equal mesh on a short SPL 2.3 %: docs/cell-rod.md, "
+                  "End cells on the SPL)" + richardson(18.7, 13.2),
             225, 35214, true,
             false, 4, true, 2},
            {"3D Hex20/P1, level 1, layers of level 2", false, 1, 2, 2.2,

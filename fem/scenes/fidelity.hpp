@@ -9,9 +9,10 @@
 // thesis 3CA every 3D mesh coarser than the reference but the 8-point Hex20 level
 // 1, which is both cheaper and closer to it) are not on the ladder.
 //
-// The numbers are measurements on the thesis designs (README: "Results: the
-// thesis RRA", "The 3CA and SPL scenes", "Reduced model"), not estimates; a
-// design far from the thesis' may see other errors.
+// The numbers are measurements on the thesis designs (docs/validation.md, The
+// thesis RRA, and the rest of docs/validation.md; docs/reduced-model.md,
+// Checked against the FEM; how each was measured: docs/fidelity-ladder.md),
+// not estimates; a design far from the thesis' may see other errors.
 #include <limits>
 #include <optional>
 #include <string>

@@ -145,8 +145,9 @@ void read_3d_discretisation(JsonReader& root, int& level, int& axial_level, int&
   axial_level = mesh.optional_integer("axial_level", Range::closed(1, 4),
                                       "element layers along the axis as at this level (absent: mesh.level), the "
                                       "cross-section as at mesh.level: the thesis 3CA's level-1 error lies along its "
-                                      "axis (README, One direction at a time), and level 1 with axial_level 4 is the "
-                                      "fidelity ladder's 3CA reference (README, Layers to level 4)")
+                                      "axis (docs/mesh-convergence.md, One direction at a time), and level 1 with "
+                                      "axial_level 4 is the fidelity ladder's 3CA reference "
+                                      "(docs/mesh-convergence.md, Layers to level 4: the whole 3CA)")
                     .value_or(0);
   serendipity = mesh.boolean("serendipity", serendipity,
                              "with element_order 2: 20-node serendipity hexahedra (Hex20/P1, the C3D20 of CalculiX) "

@@ -6,8 +6,9 @@
 // sections warping freely and alike in every pitch. Where a segment is bonded to a rigid
 // connector its end face cannot warp, and the solid cap there (no chambers) is stiffer than a
 // chambered pitch: a stubby segment (160 mm long, ~70 mm across on the thesis SPL) is stiffer in
-// torsion than its cells say, and the arm's pose is most sensitive to torsion (README,
-// "Matched layers": GJ × 1.1 moves the thesis tip 16.5 mm).
+// torsion than its cells say, and the arm's pose is most sensitive to torsion (GJ × 1.1 moves
+// the thesis tip 16.5 mm: docs/cell-rod.md, What the rest is not; docs/cell-rod.md, Bonded ends
+// in torsion).
 //
 // The faces' supports:
 // - the held face: every node fixed (bonded to a body that does not turn);
