@@ -400,9 +400,9 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
             << fixed(run.check.burst_utilisation, 3) << "; durability strain ratio "
             << fixed(run.finer_peaks.durability_log_strain / run.finer_reference_strain, 3) << " vs "
             << fixed(run.check.durability_log_strain / ref_strain, 3)
-            << " (the groove lip is a stress singularity: its peaks grow with refinement, so the burst criterion "
-               "is defined at RRA level "
-            << config.check.rra_mesh_level << "; durability is a ratio to the thesis RRA at the same level)\n";
+            << " (peaks averaged over a ball of " << fixed(config.check.peak_averaging_radius_mm, 2)
+            << " mm, which converge under refinement where the groove lip's point value does not; durability is a "
+               "ratio to the thesis RRA at the same level)\n";
   if (run.rounds.size() > 1) {
     std::cout << "check and correct, round by round:\n";
     for (std::size_t k = 0; k < run.rounds.size(); ++k) {
