@@ -258,6 +258,31 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
                       "mode of this design. The returned state is the one at the largest pressure.";
       return out;
     }
+    if (level >= 1.0) {
+      // No maximum, and the path climbed to the requested pressure: the stall was numerical (a thin
+      // cap that balloons and tightens again, a Newton step pressure control could not take). Volume
+      // control stops at the first state at or above it; Newton at exactly the requested pressure
+      // from there lands on it (the branch is stable again), else that state is reported.
+      Vector x_end = x;
+      set_pressures(1.0);
+      const NewtonReport landing = solve_newton(problem, x_end, solver, spec.newton);
+      if (landing.converged) x = x_end, level = 1.0;
+      set_pressures(level);
+      const PressureState s{level * spec.max_pressure_kPa, chamber.volume(x),
+                            pv_stiffness(problem, chamber, solver, x, spec.newton, nullptr),
+                            landing.converged ? landing.tangent_positive_definite : true,
+                            landing.iterations, true};
+      take_solver_costs();
+      out.outcome = PathOutcome::completed;
+      out.reached_pressure_kPa = s.pressure_kPa;
+      out.diagnosis = "reached " + fmt(s.pressure_kPa) + " kPa: pressure control stopped at " + fmt(last.pressure_kPa) +
+                      " kPa (" + to_string(out.path.failure) + ", dp/dV " + fmt(100 * ratio, 3) +
+                      " % of its initial value) and chamber-volume control carried the path on to the requested "
+                      "pressure without a maximum (" + vc.message + ")";
+      out.history.push_back(s);  // invalidates `last`
+      if (on_state) on_state(s, x);
+      return out;
+    }
     // No maximum: keep the pressure-controlled diagnosis below, with what volume control saw.
     out.diagnosis = " Volume control from there: " + vc.message + ".";
   }
