@@ -46,7 +46,7 @@ std::vector<double> element_means(const Mesh& m, int n, const std::function<doub
 }
 }  // namespace
 
-TEST_CASE("a ball average of a constant is the constant; of an affine field, its value at the centre", "[region]") {
+TEST_CASE("a ball average of a constant is the constant, of a tent its closed-form mean", "[region]") {
   const Mesh m = square(20, 1000);
   const RegionPeak c = max_region_average(m, std::vector<double>(m.num_elements(), 2.5), 0, 0.2);
   CHECK(c.value == Approx(2.5).epsilon(1e-12));
