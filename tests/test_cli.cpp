@@ -97,6 +97,27 @@ TEST_CASE("softarm rejects bad scene input with the field named", "[cli]") {
     CHECK(r.exit_code == 2);
     CHECK(r.output.find("/nonexistent/scene.json") != std::string::npos);
   }
+  SECTION("a key given twice: refused, naming it (JSON would take the last silently)") {
+    expect_input_error(rra_config(R"("length_mm": 150, "length_mm": 160)"), "geometry.length_mm");
+  }
+  SECTION("a directory given as the config") {
+    const auto r = run_softarm("simulate " + std::string(SOFTARM_SOURCE_DIR) + "/configs");
+    INFO(r.output);
+    CHECK(r.exit_code == 2);
+    CHECK(r.output.find("is a directory") != std::string::npos);
+  }
+}
+
+TEST_CASE("softarm refuses JSON nested without bound in every command that reads JSON, without a crash", "[cli]") {
+  // 100,000 nested arrays once killed every JSON-reading command with a segmentation fault (issue 35).
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  const auto file = write_config("deep.json", deep);
+  for (const std::string command : {"simulate ", "design ", "study ", "material check ", "export "}) {
+    const auto r = run_softarm(command + file);
+    INFO(command << ": " << r.output.substr(0, 400));
+    CHECK(r.exit_code == 2);
+    CHECK(r.output.find("nested deeper than 64 levels") != std::string::npos);
+  }
 }
 
 TEST_CASE("softarm rejects bad 3CA and SPL input with the field named", "[cli]") {

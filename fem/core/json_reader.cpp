@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <sstream>
+#include <stdexcept>
 
 namespace softarm::fem {
 namespace {
@@ -202,23 +204,72 @@ void JsonReader::finish() const {
   }
 }
 
-nlohmann::json load_json_file(const std::string& file_name) {
-  std::ifstream in(file_name);
-  if (!in) throw InputError("", "cannot open file '" + file_name + "'");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+nlohmann::json parse_json_text(const std::string& text, const std::string& source) {
+  // The parser's callback sees every key with its depth: a stack of the keys of the open objects
+  // names where a duplicate sits, and the depth stops a runaway nesting before it is built.
+  std::vector<std::vector<std::string>> keys;  // per open object (arrays hold an empty placeholder)
+  std::vector<std::string> path;
+  std::string failure, failure_field;
+  const auto where = [&] {
+    std::string p;
+    for (const auto& k : path) p += (p.empty() ? "" : ".") + k;
+    return p;
+  };
+  nlohmann::json::parser_callback_t check = [&](int depth, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using E = nlohmann::json::parse_event_t;
+    if (depth > kMaxJsonDepth) {
+      failure_field = where();
+      failure = "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels";
+      throw std::length_error(failure);
+    }
+    if (event == E::object_start || event == E::array_start) {
+      keys.emplace_back();
+      path.emplace_back(event == E::array_start ? "[]" : "");
+    } else if (event == E::object_end || event == E::array_end) {
+      if (!keys.empty()) keys.pop_back();
+      if (!path.empty()) path.pop_back();
+    } else if (event == E::key && !keys.empty()) {
+      const std::string key = parsed.get<std::string>();
+      auto& seen = keys.back();
+      if (std::find(seen.begin(), seen.end(), key) != seen.end()) {
+        path.back() = key;
+        failure_field = where();
+        failure = "the key '" + key + "' is given twice in one object; give it once";
+        throw std::length_error(failure);
+      }
+      seen.push_back(key);
+      path.back() = key;
+    }
+    return true;
+  };
   try {
-    return nlohmann::json::parse(text, nullptr, true, /*ignore_comments=*/true);
+    return nlohmann::json::parse(text, check, true, /*ignore_comments=*/true);
+  } catch (const std::length_error&) {
+    throw InputError(failure_field, "in '" + source + "': " + failure);
   } catch (const nlohmann::json::parse_error& e) {
     // Translate the byte offset into line:column for the user.
     std::size_t line = 1, col = 1;
     for (std::size_t i = 0; i < std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size()); ++i) {
       if (text[i] == '\n') { ++line; col = 1; } else { ++col; }
     }
-    throw InputError("", "malformed JSON in '" + file_name + "' at line " + std::to_string(line) + ", column " +
+    throw InputError("", "malformed JSON in '" + source + "' at line " + std::to_string(line) + ", column " +
                              std::to_string(col) + ": " + e.what());
   }
+}
+
+nlohmann::json load_json_file(const std::string& file_name) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file_name, ec))
+    throw InputError("", "'" + file_name + "' is a directory; give a JSON file");
+  std::ifstream in(file_name, std::ios::binary);
+  if (!in) throw InputError("", "cannot open file '" + file_name + "'");
+  const auto size = std::filesystem::file_size(file_name, ec);
+  if (!ec && size > kMaxJsonBytes)
+    throw InputError("", "'" + file_name + "' is " + std::to_string(size) + " bytes; a JSON input may have at most " +
+                             std::to_string(kMaxJsonBytes) + " bytes");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_json_text(buffer.str(), file_name);
 }
 
 }  // namespace softarm::fem

@@ -73,7 +73,19 @@ class JsonReader {
   mutable std::vector<std::string> read_;
 };
 
-/// Parses a JSON file; malformed JSON raises an InputError with line and column.
+/// Bounds on a JSON input (issue 35): no config softarm reads nests deeper than a few levels or
+/// weighs more than a few kB; these leave room for any real one and refuse a document that would
+/// exhaust the machine before it is parsed.
+inline constexpr int kMaxJsonDepth = 64;
+inline constexpr std::size_t kMaxJsonBytes = 16u << 20;  // 16 MiB
+
+/// Parses a JSON file (// comments allowed). Refused with an InputError: a missing file or a
+/// directory, a file over kMaxJsonBytes, nesting deeper than kMaxJsonDepth, a key given twice
+/// in one object (JSON leaves it to the reader; taking the last silently would hide a typo), and
+/// malformed JSON (with line and column).
 nlohmann::json load_json_file(const std::string& file_name);
+
+/// The same checks on a document held in memory; `source` names it in messages.
+nlohmann::json parse_json_text(const std::string& text, const std::string& source);
 
 }  // namespace softarm::fem
