@@ -188,10 +188,32 @@ void print_schema(const std::string& scene) {
   print_fields("scene \"" + scene + "\" config keys");
 }
 
+/// The name in `names` nearest to `given` by edit distance (insertions, deletions, substitutions).
+std::string nearest_name(const std::string& given, const std::vector<std::string>& names) {
+  std::string best;
+  std::size_t best_distance = std::string::npos;
+  for (const std::string& name : names) {
+    std::vector<std::size_t> row(name.size() + 1);
+    for (std::size_t j = 0; j <= name.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= given.size(); ++i) {
+      std::size_t diagonal = row[0];
+      row[0] = i;
+      for (std::size_t j = 1; j <= name.size(); ++j) {
+        const std::size_t up = row[j];
+        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (given[i - 1] == name[j - 1] ? 0 : 1)});
+        diagonal = up;
+      }
+    }
+    if (row[name.size()] < best_distance) best_distance = row[name.size()], best = name;
+  }
+  return best;
+}
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
-  CLI::App app{"softarm: design optimisation and simulation of soft pneumatic continuum arms"};
+  CLI::App app{"softarm: design optimisation and simulation of soft pneumatic continuum arms", "softarm"};
+  app.set_version_flag("--version", std::string("softarm ") + SOFTARM_VERSION);
   app.require_subcommand(1);
   app.fallthrough();  // global options (--threads) may follow the subcommand
   int threads = 0;
@@ -261,6 +283,22 @@ int run_cli(int argc, char** argv) {
   fidelity->add_option("--report", fidelity_report, "also write an HTML page with a Pareto plot per scene");
   add_material_command(app);
 
+  // Bare `softarm`: the help, not an error. An unknown command: the nearest known one.
+  if (argc == 1) {
+    std::cout << app.help();
+    return 0;
+  }
+  if (const std::string first = argv[1]; !first.empty() && first[0] != '-') {
+    std::vector<std::string> names;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
+    if (std::find(names.begin(), names.end(), first) == names.end()) {
+      std::cerr << "softarm: unknown command '" << first << "'; did you mean '" << nearest_name(first, names)
+                << "'? Commands:";
+      for (const auto& n : names) std::cerr << " " << n;
+      std::cerr << " (softarm --help)\n";
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

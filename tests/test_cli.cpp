@@ -108,6 +108,20 @@ TEST_CASE("softarm rejects bad scene input with the field named", "[cli]") {
   }
 }
 
+TEST_CASE("softarm bare prints its help, --version its version, an unknown command the nearest name", "[cli]") {
+  const auto bare = run_softarm("");
+  CHECK(bare.exit_code == 0);
+  CHECK(bare.output.find("simulate") != std::string::npos);
+  CHECK(bare.output.find("design") != std::string::npos);
+  const auto version = run_softarm("--version");
+  CHECK(version.exit_code == 0);
+  CHECK(version.output.find("softarm 0.") != std::string::npos);
+  const auto typo = run_softarm("simulat configs/rra_thesis.json");
+  INFO(typo.output);
+  CHECK(typo.exit_code == 2);
+  CHECK(typo.output.find("unknown command 'simulat'; did you mean 'simulate'?") != std::string::npos);
+}
+
 TEST_CASE("softarm refuses JSON nested without bound in every command that reads JSON, without a crash", "[cli]") {
   // 100,000 nested arrays once killed every JSON-reading command with a segmentation fault (issue 35).
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
