@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "fem/core/number_text.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
 #include "objectives/solid_segment_check.hpp"
 
@@ -183,7 +184,7 @@ Lift lift(fem::SpatialCellRodSpec rod, double mass_kg, const EvaluationSettings&
     previous_tilt = tilt, previous_t = t;
     last = st;
   }
-  out.why = "the tip stays below the lift angle up to " + std::to_string(top * s.working_pressure_kPa) + " kPa";
+  out.why = "the tip stays below the lift angle up to " + fem::number_text(top * s.working_pressure_kPa) + " kPa";
   return out;
 }
 
