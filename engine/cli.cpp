@@ -2,10 +2,12 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 
 #include "engine/design/design_command.hpp"
+#include "fem/core/number_text.hpp"
 #include "engine/design/design_config.hpp"
 #include "engine/design/design_measures.hpp"
 #include "engine/optimiser/optimiser.hpp"
@@ -188,6 +190,27 @@ void print_schema(const std::string& scene) {
   print_fields("scene \"" + scene + "\" config keys");
 }
 
+/// A number option that must be finite and within [lo, hi] (CLI::Range lets NaN through: every
+/// comparison with it is false).
+CLI::Validator finite_in(double lo, double hi, const std::string& unit) {
+  return CLI::Validator(
+      [lo, hi, unit](std::string& text) -> std::string {
+        double v = 0;
+        try {
+          std::size_t used = 0;
+          v = std::stod(text, &used);
+          if (used != text.size()) return "'" + text + "' is not a number";
+        } catch (const std::exception&) {
+          return "'" + text + "' is not a number";
+        }
+        if (!std::isfinite(v) || v < lo || v > hi)
+          return "value " + text + " out of range; valid: a finite number in [" + fem::number_text(lo) + ", " +
+                 fem::number_text(hi) + "] " + unit;
+        return "";
+      },
+      "FINITE[" + fem::number_text(lo) + ", " + fem::number_text(hi) + "]");
+}
+
 /// The name in `names` nearest to `given` by edit distance (insertions, deletions, substitutions).
 std::string nearest_name(const std::string& given, const std::vector<std::string>& names) {
   std::string best;
@@ -217,14 +240,15 @@ int run_cli(int argc, char** argv) {
   app.require_subcommand(1);
   app.fallthrough();  // global options (--threads) may follow the subcommand
   int threads = 0;
-  app.add_option("--threads", threads, "worker threads for assembly (default: SOFTARM_THREADS or all cores)");
+  app.add_option("--threads", threads, "worker threads for assembly (default: SOFTARM_THREADS or all cores)")
+      ->check(CLI::Range(1, 256));
 
   std::string scene_file, output_dir;
   int mesh_level = 0;
   auto* sim = app.add_subcommand("simulate", "run a scene config (e.g. configs/rra_thesis.json)");
   sim->add_option("scene", scene_file, "scene JSON file")->required();
   sim->add_option("-o,--output", output_dir, "output directory (overrides output.directory)");
-  sim->add_option("--mesh-level", mesh_level, "mesh refinement level (overrides mesh.level)");
+  sim->add_option("--mesh-level", mesh_level, "mesh refinement level (overrides mesh.level)")->check(CLI::Range(1, 6));
   int element_order = 0;
   sim->add_option("--element-order", element_order, "1 (linear) or 2 (quadratic): overrides mesh.element_order")
       ->check(CLI::Range(1, 2));
@@ -241,8 +265,9 @@ int run_cli(int argc, char** argv) {
   auto* exp = app.add_subcommand("export", "write a scene as an Abaqus/CalculiX input deck (.inp)");
   exp->add_option("scene", scene_file, "scene JSON file")->required();
   exp->add_option("-o,--output", deck_path, "deck file (default out/scene.inp)");
-  exp->add_option("--pressure-kPa", deck_pressure_kPa, "chamber pressure of the deck (default: load.max_pressure_kPa)");
-  exp->add_option("--mesh-level", mesh_level, "mesh refinement level (overrides mesh.level)");
+  exp->add_option("--pressure-kPa", deck_pressure_kPa, "chamber pressure of the deck (default: load.max_pressure_kPa)")
+      ->check(finite_in(1e-6, 1e4, "kPa"));
+  exp->add_option("--mesh-level", mesh_level, "mesh refinement level (overrides mesh.level)")->check(CLI::Range(1, 6));
 
   auto* schema = app.add_subcommand("schema", "list every scene-config key with its unit, default and valid range");
   std::string schema_scene = "rra";

@@ -122,6 +122,23 @@ TEST_CASE("softarm bare prints its help, --version its version, an unknown comma
   CHECK(typo.output.find("unknown command 'simulat'; did you mean 'simulate'?") != std::string::npos);
 }
 
+TEST_CASE("softarm refuses non-finite and out-of-range options, naming the option", "[cli]") {
+  const std::string rra = std::string(SOFTARM_SOURCE_DIR) + "/configs/rra_thesis.json";
+  for (const std::string args : {"export " + rra + " --pressure-kPa nan -o /tmp/softarm_cli_test/nan.inp",
+                                 "export " + rra + " --pressure-kPa inf -o /tmp/softarm_cli_test/inf.inp",
+                                 "export " + rra + " --pressure-kPa -5 -o /tmp/softarm_cli_test/neg.inp",
+                                 "simulate " + rra + " --mesh-level 0 -o /tmp/softarm_cli_test/l0",
+                                 "--threads 100000 simulate " + rra + " -o /tmp/softarm_cli_test/t",
+                                 "--threads -1 simulate " + rra + " -o /tmp/softarm_cli_test/t"}) {
+    const auto r = run_softarm(args);
+    INFO(args << "\n" << r.output);
+    CHECK(r.exit_code == 2);
+    CHECK((r.output.find("--pressure-kPa") != std::string::npos || r.output.find("--mesh-level") != std::string::npos ||
+           r.output.find("--threads") != std::string::npos));
+  }
+  CHECK_FALSE(std::filesystem::exists("/tmp/softarm_cli_test/nan.inp"));
+}
+
 TEST_CASE("softarm refuses JSON nested without bound in every command that reads JSON, without a crash", "[cli]") {
   // 100,000 nested arrays once killed every JSON-reading command with a segmentation fault (issue 35).
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
