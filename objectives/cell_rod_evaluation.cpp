@@ -223,7 +223,8 @@ void payload_on_cells(const fem::SplCells& cells, const EvaluationSettings& s, A
 }  // namespace
 
 CellRodEvaluation evaluate_arm_on_cells(const ArmCandidate& c, const EvaluationSettings& s, int cell_levels,
-                                        const std::function<void(fem::TcaSceneSpec&)>& adjust) {
+                                        const std::function<void(fem::TcaSceneSpec&)>& adjust,
+                                        const fem::TaskSpread& spread) {
   const auto t0 = Clock::now();
   for (const auto& seg : c.design.segments) fem::validate(seg);
   CellRodEvaluation out;
@@ -234,7 +235,7 @@ CellRodEvaluation evaluate_arm_on_cells(const ArmCandidate& c, const EvaluationS
   m.length_mm = arm.length_mm();
 
   // Planar loads in every segment's mirror plane: no torsion to measure.
-  const fem::SplCells cells = fem::spl_cells(arm_cell_scene(c, s), cell_levels, adjust, false);
+  const fem::SplCells cells = fem::spl_cells(arm_cell_scene(c, s), cell_levels, adjust, false, spread);
   out.cell_seconds = cells.seconds;
   out.cells = cells.cells;
   out.end_cells = cells.end_cells;
@@ -243,10 +244,12 @@ CellRodEvaluation evaluate_arm_on_cells(const ArmCandidate& c, const EvaluationS
   out.segment_outcome = cells.segment_outcome;
   out.segment_reached_kPa = cells.segment_reached_kPa;
   out.notes = cells.notes;
+  fem::TcaSceneSpec mesh = fem::spl_segment_cell_scene(arm_cell_scene(c, s), 0, cell_levels);  // the cells' mesh
+  if (adjust) adjust(mesh);
   std::ostringstream model;
   model << "cell rod: " << cells.cells << " ring-pitch cells (" << cells.largest_cell_dofs << " dofs) and "
-        << cells.end_cells << " end cells (" << cells.largest_end_cell_dofs
-        << " dofs), Hex20/P1 at 27 points, level 1, level 4's layers";
+        << cells.end_cells << " end cells (" << cells.largest_end_cell_dofs << " dofs), Hex20/P1 at 27 points, level "
+        << mesh.mesh_level << ", level " << (mesh.axial_level > 0 ? mesh.axial_level : mesh.mesh_level) << "'s layers";
   out.model = model.str();
   if (!cells.failure.empty()) {
     out.failure = cells.failure;

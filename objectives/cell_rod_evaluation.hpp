@@ -30,6 +30,7 @@
 #include <string>
 
 #include "fem/scenes/pressure_path.hpp"
+#include "fem/scenes/spl_cell_job.hpp"
 #include "fem/scenes/spl_scene.hpp"
 #include "objectives/arm_evaluation.hpp"
 
@@ -55,10 +56,13 @@ struct CellRodEvaluation {
 /// The accurate model's measures of `candidate` under `settings` (working pressure, target bending,
 /// lift angle and reach, safety factor, the lone RRA's mesh level). `cell_levels`: outputs along the
 /// cells' ramp (every 1/cell_levels of the working pressure). `adjust`, if given, changes each
-/// segment's cell scene (a test's coarser mesh). Throws fem::InputError for a design that cannot be built.
+/// segment's cell scene (a test's coarser mesh). `spread`, if given, runs the cells (over MPI ranks,
+/// every one calling this with the same arguments; fem/scenes/spl_cell_job.hpp), else this process'
+/// threads do: the same answer either way. Throws fem::InputError for a design that cannot be built.
 CellRodEvaluation evaluate_arm_on_cells(const ArmCandidate& candidate, const EvaluationSettings& settings,
                                         int cell_levels = 16,
-                                        const std::function<void(fem::TcaSceneSpec&)>& adjust = {});
+                                        const std::function<void(fem::TcaSceneSpec&)>& adjust = {},
+                                        const fem::TaskSpread& spread = {});
 
 /// The arm's 3D scene whose cells the verification runs: chambers 2 and 3 of every segment at the
 /// working pressure, hanging (gravity along −z), the solver settings of the design's 3D checks.

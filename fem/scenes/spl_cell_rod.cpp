@@ -7,7 +7,6 @@
 #include "fem/core/parallel.hpp"
 #include "fem/reduced/rod_layout.hpp"
 #include "fem/scenes/tca_cell.hpp"
-#include "fem/scenes/twist_compliance.hpp"
 
 namespace softarm::fem {
 namespace {
@@ -44,7 +43,7 @@ EndFaceSupport spl_end_support(int n, TcaEnd end) {
 }
 
 SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::function<void(TcaSceneSpec&)>& adjust,
-                   bool with_torsion) {
+                   bool with_torsion, const TaskSpread& spread) {
   const auto t0 = std::chrono::steady_clock::now();
   SplCells out;
   out.rod.gravity_m_s2 = spec.gravity_m_s2;
@@ -94,32 +93,35 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::functio
     }
     out.rod.pieces.push_back(p);
   }
-  // The end cells, then the cells and each one's torsion at rest, side by side (parallel_tasks).
+  // The end cells, then the cells and each one's torsion at rest: side by side on this process'
+  // threads (parallel_tasks), or spread by `spread` (over MPI ranks) and returned as text.
   const int end_count = static_cast<int>(end_jobs.size());
-  std::vector<TcaEndCellResult> ends(end_jobs.size());
-  std::vector<double> end_twist(end_jobs.size(), 0.0);  // bonded ends' twist compliance at rest
-  std::vector<TcaCellResult> cells(jobs.size());
-  std::vector<double> torsion(jobs.size());
-  parallel_tasks(end_count + static_cast<int>(jobs.size()), [&](int i) {
+  const int job_count = end_count + static_cast<int>(jobs.size());
+  const auto run_job = [&](int i) {
     if (i < end_count) {
       const EndJob& e = end_jobs[i];
-      ends[i] = run_tca_end_cell(scenes[e.segment], e.end, out.end_rings[e.segment], e.face);
-      if (with_torsion && e.face == EndFaceSupport::bonded)
-        end_twist[i] = end_cell_twist_compliance(scenes[e.segment], e.end, out.end_rings[e.segment]);
-      return;
+      return run_end_cell_job(scenes[e.segment], e.end, out.end_rings[e.segment], e.face, with_torsion);
     }
-    i -= end_count;
-    cells[i] = run_tca_cell(scenes[jobs[i].segment], jobs[i].ring);
-    if (with_torsion) torsion[i] = cell_torsion_stiffness(scenes[jobs[i].segment], jobs[i].ring);
-  });
+    const Job& c = jobs[i - end_count];
+    return run_cell_job(scenes[c.segment], c.ring, with_torsion);
+  };
+  std::vector<CellJobResult> results(job_count);
+  if (spread) {
+    const std::vector<std::string> texts = spread(job_count, [&](int i) { return to_text(run_job(i)); });
+    for (int i = 0; i < job_count; ++i) results[i] = cell_job_from_text(texts.at(i));
+  } else {
+    parallel_tasks(job_count, [&](int i) { results[i] = run_job(i); });
+  }
+  const auto end_result = [&](std::size_t i) -> const CellJobResult& { return results[i]; };
+  const auto cell_result = [&](std::size_t i) -> const CellJobResult& { return results[end_count + i]; };
   // Each segment's lowest stop over its cells and end cells (the limit point's pressure where traced).
-  const auto note_stop = [&](int n, const PressurePathResult& path) {
-    const double reached = path.outcome == PathOutcome::limit_point && path.estimated_limit_pressure_kPa > 0
-                               ? path.estimated_limit_pressure_kPa
-                               : path.reached_pressure_kPa;
-    if (path.outcome != PathOutcome::completed && (out.segment_outcome[n] == PathOutcome::completed ||
-                                                    reached < out.segment_reached_kPa[n])) {
-      out.segment_outcome[n] = path.outcome;
+  const auto note_stop = [&](int n, const CellJobResult& r) {
+    const double reached = r.outcome == PathOutcome::limit_point && r.estimated_limit_pressure_kPa > 0
+                               ? r.estimated_limit_pressure_kPa
+                               : r.reached_pressure_kPa;
+    if (r.outcome != PathOutcome::completed && (out.segment_outcome[n] == PathOutcome::completed ||
+                                                 reached < out.segment_reached_kPa[n])) {
+      out.segment_outcome[n] = r.outcome;
       out.segment_reached_kPa[n] = reached;
     }
   };
@@ -127,42 +129,40 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::functio
     const auto& p = scenes[n].chamber_pressure_kPa;
     out.segment_reached_kPa[n] = *std::max_element(p.begin(), p.end());
   }
-  for (std::size_t i = 0; i < end_jobs.size(); ++i) note_stop(end_jobs[i].segment, ends[i].path);
-  for (std::size_t i = 0; i < jobs.size(); ++i) note_stop(jobs[i].segment, cells[i].path);
+  for (std::size_t i = 0; i < end_jobs.size(); ++i) note_stop(end_jobs[i].segment, end_result(i));
+  for (std::size_t i = 0; i < jobs.size(); ++i) note_stop(jobs[i].segment, cell_result(i));
   for (std::size_t i = 0; i < end_jobs.size(); ++i) {
     const EndJob& e = end_jobs[i];
-    const auto& p = scenes[e.segment].chamber_pressure_kPa;
-    out.largest_end_cell_dofs = std::max(out.largest_end_cell_dofs, ends[i].dofs);
-    out.outcomes.push_back(ends[i].path.outcome);
+    const CellJobResult& r = end_result(i);
+    out.largest_end_cell_dofs = std::max(out.largest_end_cell_dofs, r.dofs);
+    out.outcomes.push_back(r.outcome);
     const std::string name = "segment " + std::to_string(e.segment + 1) + ", " + (e.end == TcaEnd::top ? "top" : "bottom") + " end";
-    if (ends[i].path.outcome != PathOutcome::completed) out.notes += " (" + name + ": " + ends[i].path.diagnosis + ")";
-    if (std::isnan(end_twist[i])) {
+    if (r.outcome != PathOutcome::completed) out.notes += " (" + name + ": " + r.diagnosis + ")";
+    if (std::isnan(r.torsion)) {
       out.failure = name + ": the end cell's tangent at rest is not positive definite (no torsional stiffness)";
       return out;
     }
-    out.rod.pieces[e.piece].ends.push_back(spatial_end_table(ends[i], *std::max_element(p.begin(), p.end())));
-    out.rod.pieces[e.piece].ends.back().twist_compliance_per_Nmm = end_twist[i];
+    out.rod.pieces[e.piece].ends.push_back(r.end);
+    out.rod.pieces[e.piece].ends.back().twist_compliance_per_Nmm = r.torsion;
   }
   out.end_cells = end_count;
   for (std::size_t i = 0; i < jobs.size(); ++i) {
-    const TcaCellResult& cell = cells[i];
+    const CellJobResult& r = cell_result(i);
     const int n = jobs[i].segment, ring = jobs[i].ring;
-    const auto& p = scenes[n].chamber_pressure_kPa;
-    out.half_model[n] = cell.model.half;
-    out.largest_cell_dofs = std::max(out.largest_cell_dofs, cell.dofs);
+    out.half_model[n] = r.half_model;
+    out.largest_cell_dofs = std::max(out.largest_cell_dofs, r.dofs);
     ++out.cells;
-    out.outcomes.push_back(cell.path.outcome);
-    if (cell.path.outcome != PathOutcome::completed)
-      out.notes += " (segment " + std::to_string(n + 1) + ", ring " + std::to_string(ring) + ": " +
-                   cell.path.diagnosis + ")";
-    if (with_torsion && !(torsion[i] > 0)) {
+    out.outcomes.push_back(r.outcome);
+    if (r.outcome != PathOutcome::completed)
+      out.notes += " (segment " + std::to_string(n + 1) + ", ring " + std::to_string(ring) + ": " + r.diagnosis + ")";
+    if (with_torsion && !(r.torsion > 0)) {
       out.failure = "segment " + std::to_string(n + 1) + ", ring " + std::to_string(ring) +
                     ": the cell's tangent at rest is not positive definite (no torsional stiffness)";
       return out;
     }
     auto& tables = out.rod.pieces[jobs[i].piece].cells;
-    tables.push_back(spatial_cell_table(cell, *std::max_element(p.begin(), p.end())));
-    tables.back().torsion_compliance_per_Nmm2 = with_torsion ? 1 / torsion[i] : 0.0;
+    tables.push_back(r.cell);
+    tables.back().torsion_compliance_per_Nmm2 = with_torsion ? 1 / r.torsion : 0.0;
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

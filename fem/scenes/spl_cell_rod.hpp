@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "fem/reduced/spatial_cell_rod.hpp"
+#include "fem/scenes/spl_cell_job.hpp"
 #include "fem/scenes/spl_scene.hpp"
 #include "fem/scenes/tca_end_cell.hpp"
 
@@ -57,9 +58,11 @@ struct SplCells {
 /// `adjust`, if given, changes each segment's cell scene after spl_segment_cell_scene (a benchmark's
 /// other mesh or end rings). Without `with_torsion` the cells' GJ and the bonded ends' twist are not
 /// measured and the rod is rigid in torsion: exact for loads in one mirror plane of every segment (a
-/// planar pose twists nothing), and about a fifth of the cost saved.
+/// planar pose twists nothing), and about a fifth of the cost saved. `spread`, if given, runs the cells
+/// (spl_cell_job.hpp: over MPI ranks, each with the same arguments), else this process' threads do.
 SplCells spl_cells(const SplSceneSpec& spec, int cell_levels = 16,
-                   const std::function<void(TcaSceneSpec&)>& adjust = {}, bool with_torsion = true);
+                   const std::function<void(TcaSceneSpec&)>& adjust = {}, bool with_torsion = true,
+                   const TaskSpread& spread = {});
 
 struct SplCellRodResult {
   std::vector<SplState> curve;        // rest (under gravity), then every output level the rod reached
