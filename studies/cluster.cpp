@@ -2,6 +2,9 @@
 
 #include <cstdlib>
 
+#include <chrono>
+#include <thread>
+
 #ifdef SOFTARM_WITH_MPI
 #include <mpi.h>
 #endif
@@ -19,6 +22,19 @@ void broadcast_from_root(Container& values, MPI_Datatype type) {
   MPI_Bcast(&n, 1, MPI_INT, 0, MPI_COMM_WORLD);
   values.resize(n);
   if (n) MPI_Bcast(values.data(), n, type, 0, MPI_COMM_WORLD);
+}
+#endif
+
+#ifdef SOFTARM_WITH_MPI
+/// Waits for `request` asleep, a few milliseconds at a time: a rank waiting on the others (a design's
+/// rank 0 searching, a rank whose cells finished first) leaves its core to them instead of spinning.
+void wait_idle(MPI_Request& request) {
+  int done = 0;
+  for (;;) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
 }
 #endif
 
@@ -68,6 +84,41 @@ std::vector<int> Cluster::broadcast(std::vector<int> values) const {
 std::string Cluster::broadcast(std::string text) const {
 #ifdef SOFTARM_WITH_MPI
   if (initialised_) broadcast_from_root(text, MPI_CHAR);
+#endif
+  return text;
+}
+
+std::vector<std::string> Cluster::all_gather(const std::string& mine) const {
+  std::vector<std::string> all(static_cast<std::size_t>(size_));
+#ifdef SOFTARM_WITH_MPI
+  if (initialised_) {
+    int length = static_cast<int>(mine.size());
+    std::vector<int> lengths(size_), offsets(size_, 0);
+    MPI_Request request;
+    MPI_Iallgather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, MPI_COMM_WORLD, &request);
+    wait_idle(request);
+    for (int r = 1; r < size_; ++r) offsets[r] = offsets[r - 1] + lengths[r - 1];
+    std::string joined(static_cast<std::size_t>(offsets.back() + lengths.back()), '\0');
+    MPI_Allgatherv(mine.data(), length, MPI_CHAR, joined.data(), lengths.data(), offsets.data(), MPI_CHAR,
+                   MPI_COMM_WORLD);
+    for (int r = 0; r < size_; ++r) all[r] = joined.substr(offsets[r], lengths[r]);
+    return all;
+  }
+#endif
+  all.front() = mine;
+  return all;
+}
+
+std::string Cluster::broadcast_idle(std::string text) const {
+#ifdef SOFTARM_WITH_MPI
+  if (initialised_) {
+    int n = static_cast<int>(text.size());
+    MPI_Request request;
+    MPI_Ibcast(&n, 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+    wait_idle(request);
+    text.resize(static_cast<std::size_t>(n));
+    if (n) MPI_Bcast(text.data(), n, MPI_CHAR, 0, MPI_COMM_WORLD);
+  }
 #endif
   return text;
 }

@@ -28,6 +28,12 @@ class Cluster {
   std::vector<int> broadcast(std::vector<int> values) const;
   /// Rank 0's string (an error message or ""), given to every rank.
   std::string broadcast(std::string text) const;
+  /// As broadcast(std::string), but the ranks waiting for rank 0 sleep (every rank calls this one,
+  /// not the other, for the same message).
+  std::string broadcast_idle(std::string text) const;
+  /// Every rank's `mine`, in rank order, given to every rank (collective: every rank calls it;
+  /// those waiting for the others sleep).
+  std::vector<std::string> all_gather(const std::string& mine) const;
   /// Non-root ranks: one finished result, and finally "done".
   void send_result(const std::string& line) const;
   void send_done() const;

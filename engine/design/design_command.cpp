@@ -7,6 +7,7 @@
 #include <iostream>
 #include <optional>
 
+#include "engine/design/cell_cluster.hpp"
 #include "engine/design/design_problem.hpp"
 #include "engine/design/design_report.hpp"
 #include "engine/design/search_log.hpp"
@@ -147,7 +148,8 @@ bool all_met(const DesignConfig& config, const objectives::ArmMeasures& m, doubl
 // (objectives/cell_rod_evaluation.hpp), or the verification the checkpoint holds from an earlier run.
 std::optional<objectives::CellRodEvaluation> verify_on_cells(const DesignConfig& config, const std::vector<double>& x,
                                                             const objectives::ArmMeasures& searched, double ref_strain,
-                                                            DesignCheckpoint& checkpoint, Clock::time_point t0) {
+                                                            DesignCheckpoint& checkpoint, const CellCluster& cells,
+                                                            Clock::time_point t0) {
   std::optional<objectives::CellRodEvaluation> v = checkpoint.verification(x);
   if (v) {
     std::cout << "verification on the cell rod: read from " << checkpoint.file().string() << "\n";
@@ -157,7 +159,7 @@ std::optional<objectives::CellRodEvaluation> verify_on_cells(const DesignConfig&
               << fixed(std::chrono::duration<double>(Clock::now() - t0).count(), 0) << " s into the run) ...\n"
               << std::flush;
     try {
-      v = objectives::evaluate_arm_on_cells(make_candidate(config, x), config.check, config.cell_levels);
+      v = cells.evaluate(config, x);
     } catch (const std::exception& e) {
       std::cout << "verification could not run: " << e.what() << "\n";
       return std::nullopt;
@@ -224,9 +226,22 @@ std::vector<double> best_verified(const DesignConfig& config, const DesignRun& r
   }
   return x;
 }
+
+// A rank other than 0 under mpirun: the same config, silently, and its share of every verification's cells.
+int serve_design(const std::string& file, CellCluster& cells) {
+  try {
+    const DesignConfig config = read_design_config(fem::load_json_file(file));
+    cells.serve(config);
+  } catch (const std::exception&) {
+    return 2;  // rank 0 reads the same file and says why
+  }
+  return 0;
+}
 }  // namespace
 
 int run_design(const std::string& file, const DesignOverrides& overrides) {
+  CellCluster cells;  // rank 0 tells the others when it is done, however it ends
+  if (!cells.root()) return serve_design(file, cells);
   const auto t0 = Clock::now();
   const nlohmann::json document = fem::load_json_file(file);  // read once: the config and the checkpoint's fingerprint
   DesignConfig config = read_design_config(document);
@@ -248,7 +263,8 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
             << config.optimiser.algorithm << ", budget " << config.optimiser.max_evaluations << " evaluations, "
             << config.optimiser.starts << " start(s)";
   if (config.verify_on_cells)
-    std::cout << "; every optimum verified on the cell rod of the whole arm, which decides feasibility";
+    std::cout << "; every optimum verified on the cell rod of the whole arm, which decides feasibility"
+              << (cells.size() > 1 ? " (its cells spread over " + std::to_string(cells.size()) + " MPI ranks)" : "");
   else
     std::cout << "; no verification: the search model's verdict (fast fidelity)";
   if (config.solid_check_segment > 0) std::cout << "; 3D check of segment " << config.solid_check_segment;
@@ -292,7 +308,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
   };
   if (config.verify_on_cells && config.solid_corrections > 0) {
     std::cout << "\nthe start design on the accurate model, to correct the first search by:\n";
-    run.thesis_verification = verify_on_cells(config, run.thesis_x, run.thesis, ref_strain, checkpoint, t0);
+    run.thesis_verification = verify_on_cells(config, run.thesis_x, run.thesis, ref_strain, checkpoint, cells, t0);
     if (run.thesis_verification && run.thesis_verification->ok()) learn(run.thesis_x, run.thesis_verification->measures, run.thesis);
   }
   std::optional<objectives::ArmMeasures> rod_check;  // the last optimum at the check fidelity, uncorrected
@@ -321,7 +337,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     std::optional<objectives::SolidSegmentCheck> check;
     if (config.solid_check_segment > 0) check = check_in_3d(config, run.optimum_x, *rod_check, checkpoint);
     std::optional<objectives::CellRodEvaluation> verification;
-    if (config.verify_on_cells) verification = verify_on_cells(config, run.optimum_x, raw, ref_strain, checkpoint, t0);
+    if (config.verify_on_cells) verification = verify_on_cells(config, run.optimum_x, raw, ref_strain, checkpoint, cells, t0);
     run.rounds.push_back({correction, run.optimum_x, run.optimum, run.result.feasible, check, verification, raw});
     run.answer_round = run.rounds.size() - 1;
     if (config.verify_on_cells) {

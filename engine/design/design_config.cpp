@@ -238,6 +238,11 @@ DesignConfig read_design_config(const nlohmann::json& document) {
     c.verify_on_cells = verification == "cell_rod";
     c.cell_levels = k.integer("cell_levels", 16, Range::closed(4, 64),
                               "the verification's cells report every 1/cell_levels of the working pressure");
+    c.cell_layers_level = k.integer("cell_layers_level", 0, Range::closed(0, 4),
+                                    "the verification's cells' element layers along the axis as at this mesh level; 0: "
+                                    "the fidelity ladder's cell-rod rung (level 4's layers, within 1.4 % of the 3D "
+                                    "reference on the thesis 3CA); 1: about a sixth of the cost, coarser (a quick look, "
+                                    "a test), its error not measured on the ladder");
     c.trust_radius = k.number("trust_radius", 0.25, Range::closed(0.01, 1),
                               "the first search corrected by verified designs stays within this fraction of each "
                               "variable's range of the last verified design (1: the whole range); each further "
