@@ -406,19 +406,23 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
             << fixed(run.check.burst_utilisation - run.optimum.burst_utilisation, 3) << "; search margin "
             << fixed(100 * config.search_margin, 1) << " %\n";
   // The local peaks come from a stress singularity (the groove lip): how they move one RRA mesh level finer.
-  objectives::EvaluationSettings finer = config.check;
-  finer.rra_mesh_level = config.check.rra_mesh_level + 1;
-  run.finer_peaks = objectives::evaluate_arm(make_candidate(config, run.optimum_x), finer);
-  run.finer_reference_strain = objectives::durability_reference_log_strain(
-      config.requirements.durability_reference_pressure_kPa, finer.rra_mesh_level, finer.peak_averaging_radius_mm);
-  std::cout << "local peaks one RRA mesh level finer (level " << finer.rra_mesh_level << "): burst utilisation "
-            << fixed(run.finer_peaks.burst_utilisation, 3) << " (" << run.finer_peaks.burst_governing << ") vs "
-            << fixed(run.check.burst_utilisation, 3) << "; durability strain ratio "
-            << fixed(run.finer_peaks.durability_log_strain / run.finer_reference_strain, 3) << " vs "
-            << fixed(run.check.durability_log_strain / ref_strain, 3)
-            << " (peaks averaged over a ball of " << fixed(config.check.peak_averaging_radius_mm, 2)
-            << " mm, which converge under refinement where the groove lip's point value does not; durability is a "
-               "ratio to the thesis RRA at the same level)\n";
+  if (config.mesh_sensitivity) {
+    objectives::EvaluationSettings finer = config.check;
+    finer.rra_mesh_level = config.check.rra_mesh_level + 1;
+    run.finer_peaks = objectives::evaluate_arm(make_candidate(config, run.optimum_x), finer);
+    run.finer_reference_strain = objectives::durability_reference_log_strain(
+        config.requirements.durability_reference_pressure_kPa, finer.rra_mesh_level, finer.peak_averaging_radius_mm);
+    std::cout << "local peaks one RRA mesh level finer (level " << finer.rra_mesh_level << "): burst utilisation "
+              << fixed(run.finer_peaks->burst_utilisation, 3) << " (" << run.finer_peaks->burst_governing << ") vs "
+              << fixed(run.check.burst_utilisation, 3) << "; durability strain ratio "
+              << fixed(run.finer_peaks->durability_log_strain / run.finer_reference_strain, 3) << " vs "
+              << fixed(run.check.durability_log_strain / ref_strain, 3)
+              << " (peaks averaged over a ball of " << fixed(config.check.peak_averaging_radius_mm, 2)
+              << " mm, which converge under refinement where the groove lip's point value does not; durability is a "
+                 "ratio to the thesis RRA at the same level)\n";
+  } else {
+    std::cout << "local peaks one RRA mesh level finer: not computed (check.mesh_sensitivity is false)\n";
+  }
   if (run.rounds.size() > 1) {
     std::cout << "check and correct, round by round:\n";
     for (std::size_t k = 0; k < run.rounds.size(); ++k) {

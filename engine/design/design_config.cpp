@@ -238,6 +238,10 @@ DesignConfig read_design_config(const nlohmann::json& document) {
     c.verify_on_cells = verification == "cell_rod";
     c.cell_levels = k.integer("cell_levels", 16, Range::closed(4, 64),
                               "the verification's cells report every 1/cell_levels of the working pressure");
+    c.mesh_sensitivity = k.boolean("mesh_sensitivity", true,
+                                   "evaluate the optimum's local peaks one RRA mesh level finer and report how the burst "
+                                   "and durability measures move (four RRA FEM paths at that level, about a minute); "
+                                   "false skips it (the answer is unchanged)");
     c.cell_layers_level = k.integer("cell_layers_level", 0, Range::closed(0, 4),
                                     "the verification's cells' element layers along the axis as at this mesh level; 0: "
                                     "the fidelity ladder's cell-rod rung (level 4's layers, within 1.4 % of the 3D "

@@ -64,6 +64,7 @@ struct DesignConfig {
   /// (check.corrections); false: the search model's verdict stands (a first look).
   bool verify_on_cells = true;
   int cell_levels = 16;                     // check.cell_levels: outputs along the cells' pressure ramp
+  bool mesh_sensitivity = true;             // check.mesh_sensitivity: the optimum's peaks one RRA level finer
   int cell_layers_level = 0;                // check.cell_layers_level: the cells' layers along the axis (0: the rung's)
   double trust_radius = 0.25;               // check.trust_radius: the first corrected search's box, fraction of each range
   double search_margin = 0.01;              // constraints on the search model: g + margin ≤ 0

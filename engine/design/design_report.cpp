@@ -204,7 +204,7 @@ void write_design_outputs(const DesignRun& run) {
       {"optimum_measures", measures_json(run.optimum)},
       {"optimum_constraints", nlohmann::json::object()},
       {"optimum_recheck_measures", measures_json(run.check)},
-      {"optimum_finer_peaks_measures", measures_json(run.finer_peaks)},
+      {"optimum_finer_peaks_measures", run.finer_peaks ? measures_json(*run.finer_peaks) : nlohmann::json(nullptr)},
       {"search_margin", c.search_margin},
       {"thesis", design_json(c, run.thesis_x)},
       {"thesis_measures", measures_json(run.thesis)},
@@ -298,9 +298,10 @@ void write_design_outputs(const DesignRun& run) {
   doc.table({"constraint", "optimum re-checked", "margin"}, constraint_rows(c, run.check, run.check_reference_strain),
             "optimum at the check fidelity (" + std::to_string(c.check.rod_nodes_per_segment) + " rod nodes per segment, " +
                 std::to_string(c.check.pressure_steps) + " pressure steps" + (corrected ? ", corrected" : "") + ")");
-  doc.paragraph("Local peaks one RRA mesh level finer: burst utilisation " + format_number(run.finer_peaks.burst_utilisation) +
-                " (" + run.finer_peaks.burst_governing + "), durability strain ratio " +
-                format_number(run.finer_peaks.durability_log_strain / run.finer_reference_strain) +
+  if (run.finer_peaks)
+    doc.paragraph("Local peaks one RRA mesh level finer: burst utilisation " + format_number(run.finer_peaks->burst_utilisation) +
+                " (" + run.finer_peaks->burst_governing + "), durability strain ratio " +
+                format_number(run.finer_peaks->durability_log_strain / run.finer_reference_strain) +
                 " (the criteria's peaks are averages over a ball of " + format_number(c.check.peak_averaging_radius_mm) +
                 " mm radius, which converge under refinement where the groove lip's point value does not: "
                 "docs/definitions.md, Peak averaging radius); the durability measure is a ratio to the thesis RRA at "

@@ -40,7 +40,8 @@ struct DesignRun {
   double reference_strain = 0, check_reference_strain = 0;
   std::vector<double> thesis_x, optimum_x;
   objectives::ArmMeasures thesis, optimum, check;  // optimum, check: corrected by the last round's correction
-  objectives::ArmMeasures finer_peaks;  // the optimum with the RRA FEM one level finer (peak sensitivity)
+  std::optional<objectives::ArmMeasures> finer_peaks;  // the optimum with the RRA FEM one level finer (peak
+                                                        // sensitivity); none where check.mesh_sensitivity is false
   double finer_reference_strain = 0;
   std::vector<SearchRound> rounds;  // the first search, then each correction round (check.corrections)
   std::size_t answer_round = 0;     // the round whose optimum is the answer (the best verified; else the last)
