@@ -393,14 +393,14 @@ TEST_CASE("extremes: corners of the design bounds to 400 kPa, every silicone: no
   // Issue 38: walls 0.1 and 0.9 of r_b, end caps 0.05 (and 1.0 on the thick wall), ring thickness 0.15
   // and 0.95, in Dragon Skin 10, 20 and 30, to 400 kPa: each reaches the pressure, a traced limit
   // point, or is refused naming the field (a groove deeper than the wall). Pressure control hands
-  // over to chamber-volume control at every stall. Four thin-capped or thick-walled Dragon Skin 10
-  // designs still stall under both controls (line search without decrease: issue 38 stays open):
+  // over to chamber-volume control at every stall, which accepts a residual on its round-off floor as
+  // Newton does (two designs were traced to their limit points once it did). Two thick-walled Dragon
+  // Skin 10 designs still stall under both controls (Newton wanders between definite and indefinite
+  // tangents, an element inverting, near 40 and 364 kPa: issue 38 stays open):
   // they are listed, and the test fails if one of them stops stalling (update the list) or any other
   // design stalls. The full grid (edges, 206.8 kPa, the wall-0.1 cap-1.0 corners at ~75 s each, mesh
   // level 2): build/benchmarks/bench_extremes_grid.
-  const std::set<std::string> known_stalls = {"dragon_skin_10 wall 0.1 cap 0.05 ring 0.15",
-                                              "dragon_skin_10 wall 0.9 cap 0.05 ring 0.15",
-                                              "dragon_skin_10 wall 0.9 cap 0.05 ring 0.95",
+  const std::set<std::string> known_stalls = {"dragon_skin_10 wall 0.9 cap 0.05 ring 0.15",
                                               "dragon_skin_10 wall 0.9 cap 1.00 ring 0.95"};
   int refused = 0, ran = 0;
   for (const char* material : {"dragon_skin_10", "dragon_skin_20", "dragon_skin_30"})

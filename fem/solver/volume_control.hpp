@@ -32,6 +32,9 @@ struct VolumeControlSettings {
   int max_iterations = 20;
   double residual_tolerance = 1e-8;  // ‖r‖ / force scale, as Newton's
   double volume_tolerance = 1e-10;   // |V − V*| / V*
+  double update_tolerance = 1e-6;    // ‖δx‖ / max(‖x − X‖, 1e-3 mm), as Newton's: with the residual on its
+                                     // round-off floor (below 100 × residual_tolerance, no longer falling),
+                                     // a settled update means converged
   double drop_fraction = 2e-4;       // the maximum is passed once λ falls this far below it: 10⁴ times the
                                      // equilibrium tolerance, so a fall is a fall (a Dragon Skin 10 RRA's
                                      // p(V) top is that flat before its Newton iterations stall)
