@@ -1,10 +1,25 @@
 #include "engine/output_files.hpp"
 
 #include <filesystem>
+#include <unistd.h>
 
 #include "fem/core/input_error.hpp"
 
 namespace softarm::engine {
+
+void prepare_output_directory(const std::string& directory, const std::string& field) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const auto refuse = [&](const std::string& why) {
+    throw fem::InputError(field, "cannot write to '" + directory + "': " + why +
+                                     "; give a directory that can be created and written");
+  };
+  if (directory.empty()) refuse("empty path");
+  fs::create_directories(directory, error);
+  if (error) refuse(error.message());
+  if (!fs::is_directory(directory, error)) refuse("not a directory");
+  if (::access(directory.c_str(), W_OK | X_OK) != 0) refuse("no permission to create files in it");
+}
 
 std::ofstream open_output_file(const std::string& directory, const std::string& file, std::ios::openmode mode) {
   std::error_code error;

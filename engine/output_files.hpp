@@ -8,6 +8,11 @@
 
 namespace softarm::engine {
 
+/// Creates `directory` (and its parents) if absent and checks that files can be made in it, before
+/// any work; throws fem::InputError(field, …) naming the directory and why not (an existing file in
+/// its place, no permission), so that a bad output path is exit 2 up front, not an error at the end.
+void prepare_output_directory(const std::string& directory, const std::string& field);
+
 /// Opens <directory>/<file> for writing (`mode`: anew by default); throws
 /// fem::InputError("output.directory", …) if it cannot.
 std::ofstream open_output_file(const std::string& directory, const std::string& file,

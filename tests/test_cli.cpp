@@ -139,6 +139,20 @@ TEST_CASE("softarm refuses non-finite and out-of-range options, naming the optio
   CHECK_FALSE(std::filesystem::exists("/tmp/softarm_cli_test/nan.inp"));
 }
 
+TEST_CASE("an output path that is a file or cannot be made is exit 2 naming the option, before any work", "[cli]") {
+  const std::string file = write_config("not_a_directory", "x");
+  const std::string source = std::string(SOFTARM_SOURCE_DIR);
+  for (const std::string args : {"design " + source + "/configs/thesis_requirements.json --fidelity fast -o " + file,
+                                 "design " + source + "/configs/thesis_requirements.json --fidelity fast -o " + file + "/sub",
+                                 "study " + source + "/configs/studies/end_cap_thickness.json -o " + file}) {
+    const auto r = run_softarm(args);
+    INFO(args << "\n" << r.output);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.output, Catch::Contains("'-o/--output'") && Catch::Contains("cannot write to"));
+    CHECK_THAT(r.output, !Catch::Contains("evaluation") && !Catch::Contains("softarm study:"));
+  }
+}
+
 TEST_CASE("softarm refuses JSON nested without bound in every command that reads JSON, without a crash", "[cli]") {
   // 100,000 nested arrays once killed every JSON-reading command with a segmentation fault (issue 35).
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');

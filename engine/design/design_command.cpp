@@ -253,7 +253,8 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     config.solid_check_segment = 0;
     config.solid_corrections = 0;
   }
-  std::filesystem::create_directories(config.output_directory);
+  prepare_output_directory(config.output_directory,
+                           overrides.output_directory.empty() ? "output.directory" : "-o/--output");
   DesignCheckpoint checkpoint(config.output_directory, document, overrides.fresh);
   std::cout << "softarm design: " << file << "\nobjective: " << config.objective << "; requirements: mass <= "
             << config.requirements.max_mass_kg << " kg, payload >= " << config.requirements.min_payload_kg

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <thread>
 
+#include "engine/output_files.hpp"
 #include "engine/study/study_report.hpp"
 #include "fem/core/input_error.hpp"
 #include "studies/cluster.hpp"
@@ -60,6 +61,7 @@ int run_study_command(const StudyOptions& options) {
                    : cluster.size() > 1 ? 1
                                         : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const std::filesystem::path root = options.output_root;
+  if (cluster.root()) prepare_output_directory(root.string(), "-o/--output");
   if (cluster.root())
     std::cout << "softarm study: " << specs.size() << " stud" << (specs.size() == 1 ? "y" : "ies") << ", "
               << cluster.size() << " rank" << (cluster.size() == 1 ? "" : "s") << " × " << jobs
