@@ -121,6 +121,30 @@ TEST_CASE("bad requirements name the field", "[design]") {
     doc["check"]["solid_model"] = "hex27";
     CHECK_THAT(error_field(doc), Catch::Contains("check.solid_model") && Catch::Contains("hex27"));
   }
+  SECTION("a baseline the search cannot start from: outside its variable's bounds") {
+    doc["baseline_geometry"]["taper_ratio"] = 1.5;
+    CHECK_THAT(error_field(doc), Catch::Contains("baseline_geometry.taper_ratio") && Catch::Contains("1.5") &&
+                                     Catch::Contains("[0.35, 0.7]"));
+  }
+  SECTION("a baseline that cannot be built, where no variable replaces it") {
+    doc["design_space"].erase("wall_thickness_normalised");
+    doc["baseline_geometry"]["wall_thickness_normalised"] = 5;
+    CHECK_THAT(error_field(doc), Catch::Contains("baseline_geometry.wall_thickness_normalised"));
+  }
+}
+
+TEST_CASE("the search starts from the baseline geometry's values of its variables", "[design]") {
+  auto doc = thesis_requirements();
+  doc["baseline_geometry"]["taper_ratio"] = 0.6;
+  const engine::DesignConfig config = engine::read_design_config(doc);
+  const std::vector<double> x = engine::baseline_values(config);
+  bool found = false;
+  for (std::size_t i = 0; i < config.variables.size(); ++i)
+    if (config.variables[i].variable.name == "taper_ratio") {
+      CHECK(x[i] == 0.6);
+      found = true;
+    }
+  CHECK(found);
 }
 
 TEST_CASE("the design check's model: the cell rod unless the config asks for the 8-point 3D segment", "[design]") {

@@ -9,6 +9,7 @@
 #include "fem/core/input_error.hpp"
 #include "fem/core/json_reader.hpp"
 #include "fem/materials/material.hpp"
+#include "fem/mesh/spl_design.hpp"
 
 namespace softarm::engine {
 namespace {
@@ -191,7 +192,20 @@ DesignConfig read_design_config(const nlohmann::json& document) {
         if (info.kind == optimise::VariableKind::integer &&
             (d.variable.lower != std::round(d.variable.lower) || d.variable.upper != std::round(d.variable.upper)))
           throw fem::InputError(field, "integer variable: min and max must be whole numbers");
-        d.baseline = std::clamp(info.baseline, d.variable.lower, d.variable.upper);
+        // The search starts from the baseline: the value baseline_geometry gives this variable (in the
+        // same unit), which must lie within its bounds, else the thesis value brought within them.
+        const auto given = c.baseline_geometry.find(info.name);
+        if (given != c.baseline_geometry.end() && given->is_number()) {
+          const double b = given->get<double>();
+          if (!(b >= d.variable.lower && b <= d.variable.upper))
+            throw fem::InputError(std::string("baseline_geometry.") + info.name,
+                                  "= " + show(b) + " is outside " + field + " [" + show(d.variable.lower) + ", " +
+                                      show(d.variable.upper) + "]: the search starts from the baseline; move it "
+                                      "inside the bounds or widen them");
+          d.baseline = b;
+        } else {
+          d.baseline = std::clamp(info.baseline, d.variable.lower, d.variable.upper);
+        }
       }
       v.finish();
       c.variables.push_back(d);
@@ -298,6 +312,15 @@ DesignConfig read_design_config(const nlohmann::json& document) {
     auto o = root.object("output", "where the report goes");
     c.output_directory = o.string("directory", "out/design", "output directory");
     o.finish();
+  }
+  {
+    // The baseline as given is an arm that can be built (its keys and ranges are the SPL scene's,
+    // checked here before any work rather than where the search first builds it).
+    nlohmann::json g = c.baseline_geometry;
+    g["length_mm"] = (c.requirements.length_m * 1000 - 3 * g.value("connector_thickness_mm", 40.0)) / 3;
+    fem::JsonReader reader(g, "baseline_geometry");
+    fem::read_spl_design(reader);
+    reader.finish();
   }
   root.finish();
   return c;
