@@ -121,6 +121,16 @@ TEST_CASE("bad requirements name the field", "[design]") {
     doc["check"]["solid_model"] = "hex27";
     CHECK_THAT(error_field(doc), Catch::Contains("check.solid_model") && Catch::Contains("hex27"));
   }
+  SECTION("contradictory constraints: a minimum above a maximum on the same measure") {
+    doc["constraints"] = {{{"measure", "rra_extension_mm"}, {"max", 50}}, {{"measure", "rra_extension_mm"}, {"min", 60}}};
+    CHECK_THAT(error_field(doc), Catch::Contains("constraints[1].min") && Catch::Contains("constraints[0].max"));
+  }
+  SECTION("a constraint contradicting a requirement") {
+    doc["constraints"] = {{{"measure", "mass_kg"}, {"min", 2.5}}};
+    CHECK_THAT(error_field(doc), Catch::Contains("constraints[0].min") && Catch::Contains("requirements.max_mass_kg"));
+    doc["constraints"] = {{{"measure", "payload_kg"}, {"max", 0.2}}};
+    CHECK_THAT(error_field(doc), Catch::Contains("constraints[0].max") && Catch::Contains("requirements.min_payload_kg"));
+  }
   SECTION("a baseline the search cannot start from: outside its variable's bounds") {
     doc["baseline_geometry"]["taper_ratio"] = 1.5;
     CHECK_THAT(error_field(doc), Catch::Contains("baseline_geometry.taper_ratio") && Catch::Contains("1.5") &&

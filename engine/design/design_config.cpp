@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include "fem/core/input_error.hpp"
@@ -80,6 +81,38 @@ const std::vector<std::string>& design_variable_names() {
   return names;
 }
 
+// Extra constraints that no design can meet together, or that contradict a requirement, are refused
+// before any work: a lower bound above an upper bound on the same measure (two constraints, or a
+// constraint and the requirement on that measure). Their `g` would be infeasible everywhere and the
+// whole search would run to say so.
+static void check_constraints_consistent(const DesignConfig& c) {
+  struct Bound {
+    double value;
+    std::string where;
+  };
+  const Requirements& q = c.requirements;
+  std::map<std::string, Bound> lowest_max = {
+      {"mass_kg", {q.max_mass_kg, "requirements.max_mass_kg"}}};
+  std::map<std::string, Bound> highest_min = {
+      {"payload_kg", {q.min_payload_kg, "requirements.min_payload_kg"}},
+      {"min_bending_deg", {q.bending_per_segment_deg, "requirements.bending_per_segment_deg"}}};
+  for (std::size_t i = 0; i < c.extra_constraints.size(); ++i) {
+    const MeasureBound& b = c.extra_constraints[i];
+    const std::string field = "constraints[" + std::to_string(i) + "]." + (b.is_min ? "min" : "max");
+    auto& mine = b.is_min ? highest_min : lowest_max;
+    const auto& other = b.is_min ? lowest_max : highest_min;
+    if (const auto o = other.find(b.measure); o != other.end() && (b.is_min ? b.limit > o->second.value
+                                                                             : b.limit < o->second.value))
+      throw fem::InputError(field, "= " + show(b.limit) + " on " + b.measure + (b.is_min ? " exceeds " : " is below ") +
+                                       o->second.where + " = " + show(o->second.value) +
+                                       ": no design can meet both; valid: " + (b.is_min ? "<= " : ">= ") +
+                                       show(o->second.value));
+    const auto m = mine.find(b.measure);
+    if (m == mine.end() || (b.is_min ? b.limit > m->second.value : b.limit < m->second.value))
+      mine[b.measure] = {b.limit, field};
+  }
+}
+
 DesignConfig read_design_config(const nlohmann::json& document) {
   DesignConfig c;
   fem::JsonReader root(document, "");
@@ -144,6 +177,7 @@ DesignConfig read_design_config(const nlohmann::json& document) {
       k.finish();
       c.extra_constraints.push_back(b);
     }
+    check_constraints_consistent(c);
   }
   {
     auto g = root.object("baseline_geometry",
