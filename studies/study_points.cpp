@@ -1,11 +1,13 @@
 #include "studies/study_points.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
 
 #include "fem/core/input_error.hpp"
+#include "fem/scenes/scene_config.hpp"
 
 namespace softarm::studies {
 using nlohmann::json;
@@ -115,6 +117,23 @@ std::string curve_label(const StudySpec& spec, const StudyPoint& point) {
   for (std::size_t a = 1; a < spec.axes.size(); ++a)
     label += (label.empty() ? "" : ", ") + spec.axes[a].label + " = " + value_text(point.values[a]);
   return label;
+}
+
+void check_points(const StudySpec& spec, const std::vector<StudyPoint>& points) {
+  for (const StudyPoint& point : points) {
+    try {
+      fem::read_scene_config(point.scene);
+    } catch (const fem::InputError& e) {
+      // Name the axis whose parameter the scene refused (else the first axis' value of this point).
+      std::size_t axis = 0;
+      for (std::size_t a = 0; a < spec.axes.size(); ++a)
+        if (e.field() == spec.axes[a].parameter || e.field().find(spec.axes[a].parameter) == 0) axis = a;
+      const auto& values = spec.axes.at(axis).values;
+      const auto j = std::find(values.begin(), values.end(), point.values.at(axis)) - values.begin();
+      throw fem::InputError("sweep[" + std::to_string(axis) + "].values[" + std::to_string(j) + "]",
+                            "value " + point.values.at(axis).dump() + " makes a scene softarm refuses: " + e.what());
+    }
+  }
 }
 
 }  // namespace softarm::studies

@@ -28,6 +28,12 @@ struct StudyPoint {
 /// Every point, first axis varying fastest.
 std::vector<StudyPoint> study_points(const StudySpec& spec);
 
+/// Every point's scene read as its evaluation will read it (fem::read_scene_config), before any runs:
+/// a sweep value the scene refuses (outside its range, a wall thicker than the radius) throws
+/// fem::InputError naming the axis' value (sweep[a].values[j]), the scene's field and why, instead of
+/// a point recorded "invalid" in a run that exits 0. (What only meshing finds stays a point's verdict.)
+void check_points(const StudySpec& spec, const std::vector<StudyPoint>& points);
+
 /// The base scene with `parameter` set to `value` (throws fem::InputError naming `field`).
 nlohmann::json with_parameter(nlohmann::json scene, const std::string& parameter, const nlohmann::json& value,
                               const std::string& field);

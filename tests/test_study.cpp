@@ -783,6 +783,11 @@ TEST_CASE("bad study configs exit 2 naming the field", "[study]") {
     c["sweep"][0]["values"] = {0.5, 1.5};
     expect_error(c, "sweep[0].parameter", "taper ratio 1.5 is outside (0, 1]");
   }
+  SECTION("a value outside the scene's range, named by its place in the sweep") {
+    json c = good;
+    c["sweep"][0]["values"] = {0.25, -0.5};
+    expect_error(c, "sweep[0].values[1]", "geometry.");
+  }
   SECTION("rule output not an output of the scene") {
     json c = good;
     c["rule"]["output"] = "bending_deg";

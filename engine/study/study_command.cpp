@@ -41,7 +41,8 @@ std::vector<studies::StudySpec> read_all(const std::vector<std::string>& files) 
   for (const auto& f : files) {
     try {
       specs.push_back(studies::load_study(f));
-      studies::study_points(specs.back());  // a sweep value the scene cannot take (unknown section, taper ratio > 1)
+      // A sweep value the scene cannot take (unknown section, taper ratio > 1, a value out of its range).
+      studies::check_points(specs.back(), studies::study_points(specs.back()));
     } catch (const fem::InputError& e) {
       throw fem::InputError(e.field(), e.message() + " (in " + f + ")");
     }
