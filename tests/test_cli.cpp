@@ -79,6 +79,9 @@ TEST_CASE("softarm rejects bad scene input with the field named", "[cli]") {
   SECTION("rings that do not fit") {
     expect_input_error(rra_config(R"("ring_thickness_normalised": 1.5)"), "ring_thickness_normalised");
   }
+  SECTION("a ring count past the meshing bound") {
+    expect_input_error(rra_config(R"("ring_count": 1000000)"), "geometry.ring_count");
+  }
   SECTION("unknown material") {
     expect_input_error(rra_config("", R"(, "materials": {"tube": "dragon_skin_40"})"), "materials.tube");
   }

@@ -101,14 +101,23 @@ double physical_or_normalised(JsonReader& g, const std::string& physical_key, co
   return physical ? *physical : *normalised * scale;
 }
 
+// A resource bound, not a physical one: every ring's groove is resolved by the mesh, so the element
+// count grows with the rings; 500 rings of the thesis' 160 mm RRA are 0.32 mm apart, far past any
+// printable ring, and mesh in seconds. (10⁶ rings were accepted and grew to gigabytes without output.)
+constexpr int kMaxRingCount = 500;
+
 int read_ring_count(JsonReader& g, double length, double reference_diameter, std::string& field) {
-  const auto count = g.optional_integer("ring_count", Range::non_negative(), "number of rings n_r (0 = plain tube)");
+  const auto count = g.optional_integer("ring_count", Range::closed(0, kMaxRingCount),
+                                        "number of rings n_r (0 = plain tube; at most 500: every groove is meshed)");
   const auto normalised = g.optional_number("ring_count_normalised", Range::non_negative(),
                                             "ring count, normalised: n_r = round(l·r̂ / ring_reference_diameter_mm), eq 8");
   field = g.field(g.exactly_one_of({"ring_count", "ring_count_normalised"}));
   if (count) return *count;
   const double n = std::round(length * *normalised / reference_diameter);
-  if (n > 1e6) throw InputError(field, "gives " + show(n) + " rings; at most 1000000");
+  if (n > kMaxRingCount)
+    throw InputError(field, "value " + show(*normalised) + " gives " + show(n) + " rings; valid: at most " +
+                                std::to_string(kMaxRingCount) + " rings (normalised <= " +
+                                show(kMaxRingCount * reference_diameter / length) + " here: every groove is meshed)");
   return static_cast<int>(n);
 }
 
