@@ -61,6 +61,12 @@ void expect_input_error(const std::string& config_text, const std::string& field
   CHECK(r.output.find("nan") == std::string::npos);
 }
 
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  return text.replace(at, from.size(), to);
+}
+
 }  // namespace
 
 TEST_CASE("softarm rejects bad scene input with the field named", "[cli]") {
@@ -165,6 +171,26 @@ TEST_CASE("softarm refuses JSON nested without bound in every command that reads
     INFO(command << ": " << r.output.substr(0, 400));
     CHECK(r.exit_code == 2);
     CHECK(r.output.find("nested deeper than 64 levels") != std::string::npos);
+  }
+}
+
+TEST_CASE("a number beyond a double, a huge one and a misspelt section are named, exit 2", "[cli]") {
+  SECTION("1e400 overflows a double while parsing: named, not an internal error") {
+    expect_input_error(replaced(rra_config(""), R"("length_mm": 160)", R"("length_mm": 1e400)"), "geometry.length_mm");
+  }
+  SECTION("1e308 is refused with the range that excludes it") {
+    const auto file = write_config("huge.json", replaced(rra_config(""), R"("length_mm": 160)", R"("length_mm": 1e308)"));
+    const auto r = run_softarm("simulate " + file);
+    INFO(r.output);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.output, Catch::Contains("geometry.length_mm") && Catch::Contains("<= 1e300"));
+  }
+  SECTION("a misspelt top-level section is named as the typo, with the section meant") {
+    const auto file = write_config("typo.json", replaced(rra_config(""), R"("geometry")", R"("geomtry")"));
+    const auto r = run_softarm("simulate " + file);
+    INFO(r.output);
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.output, Catch::Contains("'geomtry'") && Catch::Contains("did you mean 'geometry'"));
   }
 }
 

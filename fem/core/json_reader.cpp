@@ -34,6 +34,24 @@ std::mutex& registry_mutex() {
 
 }  // namespace
 
+namespace {
+/// Levenshtein distance: the edits (insert, delete, replace) from a to b.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+}  // namespace
+
 bool Range::contains(double x) const {
   if (!std::isfinite(x)) return false;
   const bool above = lo_open ? x > lo : x >= lo;
@@ -42,10 +60,12 @@ bool Range::contains(double x) const {
 }
 
 std::string Range::describe() const {
+  // An open end is still bounded by ±1e300 (a finite double with room to compute with): said, so
+  // that 1e308 is not refused with a range it seems to satisfy.
   const bool no_lo = lo <= -1e299, no_hi = hi >= 1e299;
-  if (no_lo && no_hi) return "any finite number";
-  if (no_hi) return (lo_open ? "> " : ">= ") + format_number(lo);
-  if (no_lo) return (hi_open ? "< " : "<= ") + format_number(hi);
+  if (no_lo && no_hi) return "any number of magnitude <= 1e300";
+  if (no_hi) return (lo_open ? "> " : ">= ") + format_number(lo) + " and <= 1e300";
+  if (no_lo) return (hi_open ? "< " : "<= ") + format_number(hi) + " and >= -1e300";
   return std::string(lo_open ? "(" : "[") + format_number(lo) + ", " + format_number(hi) + (hi_open ? ")" : "]");
 }
 
@@ -174,7 +194,15 @@ std::vector<double> JsonReader::number_list(const std::string& key, Range range,
 JsonReader JsonReader::object(const std::string& key, const std::string& doc) {
   declare(key, "object", "{}", "", doc);
   static const nlohmann::json empty = nlohmann::json::object();
-  if (!has(key)) return JsonReader(empty, field(key));
+  if (!has(key)) {
+    // A section given under a misspelt name ("geomtry") would otherwise read as an empty one and be
+    // reported as a missing key deep inside it: name the typo first.
+    if (object_.is_object())
+      for (const auto& item : object_.items())
+        if (item.value().is_object() && edit_distance(item.key(), key) <= std::max<std::size_t>(1, key.size() / 4))
+          throw InputError(field(item.key()), "unknown key; did you mean '" + key + "'?");
+    return JsonReader(empty, field(key));
+  }
   const auto& v = object_.at(key);
   if (!v.is_object()) throw InputError(field(key), "expected an object, got " + show(v));
   return JsonReader(v, field(key));
@@ -246,6 +274,10 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
     return nlohmann::json::parse(text, check, true, /*ignore_comments=*/true);
   } catch (const std::length_error&) {
     throw InputError(failure_field, "in '" + source + "': " + failure);
+  } catch (const nlohmann::json::out_of_range& e) {
+    // A number beyond a double's range (1e400) is refused by the parser itself.
+    throw InputError(where(), "in '" + source + "': a number beyond the range of a double (" + e.what() +
+                                  "); valid: magnitude <= 1e300");
   } catch (const nlohmann::json::parse_error& e) {
     // Translate the byte offset into line:column for the user.
     std::size_t line = 1, col = 1;
