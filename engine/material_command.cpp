@@ -31,6 +31,12 @@ std::string number(double x, int precision = 4) {
   return s.str();
 }
 
+// K0 in words: a law without a volumetric term (D_per_MPa [] or [0]) is incompressible, K0 = 2/D1
+// unbounded; said so rather than printed as "inf" (issue 35).
+std::string bulk_modulus_text(double K0) {
+  return std::isinf(K0) ? std::string("incompressible (no volumetric term)") : "K0 = " + number(K0) + " MPa";
+}
+
 json finite_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
 
 // ---------------------------------------------------------------- list
@@ -61,7 +67,8 @@ void print_list(bool as_json) {
   for (const auto* m : materials) {
     std::cout << std::left << std::setw(16) << m->name << std::setw(24) << m->law->kind() << std::right
               << std::setw(10) << number(m->law->initial_shear_modulus()) << std::setw(10)
-              << number(m->law->initial_bulk_modulus()) << std::setw(10) << number(m->density_g_cm3)
+              << (std::isinf(m->law->initial_bulk_modulus()) ? "incompr." : number(m->law->initial_bulk_modulus()))
+              << std::setw(10) << number(m->density_g_cm3)
               << std::setw(13) << number(m->tensile_strength_MPa) << std::setw(14)
               << number(m->elongation_at_break * 100.0) << "\n";
   }
@@ -147,7 +154,7 @@ json report_json(const CheckReport& r) {
 void print_report(const CheckReport& r) {
   const auto& m = r.material;
   std::cout << "material " << m.name << ": " << m.law->kind() << ", mu0 = " << number(m.law->initial_shear_modulus())
-            << " MPa, K0 = " << number(m.law->initial_bulk_modulus()) << " MPa\n"
+            << " MPa, " << bulk_modulus_text(m.law->initial_bulk_modulus()) << "\n"
             << "source: " << m.source << "\n"
             << "Drucker stability (incompressible, as Abaqus checks it), stretch scanned over " << number(r.lambda_lo)
             << " .. " << number(r.lambda_hi) << ":\n\n";
@@ -236,7 +243,7 @@ void write_selected(const FitRequest& request, const fem::UniaxialData& data, co
   out << fem::material_to_json(m).dump(2) << "\n";
   if (!out) throw fem::InputError("-o", "cannot write " + request.output);
   std::cout << "wrote " << request.output << " (material \"" << m.name << "\", "
-            << fem::fit_model_name(best.model) << ", K0 = " << number(m.law->initial_bulk_modulus()) << " MPa)\n";
+            << fem::fit_model_name(best.model) << ", " << bulk_modulus_text(m.law->initial_bulk_modulus()) << ")\n";
 }
 
 void run_fit(const FitRequest& request) {

@@ -194,6 +194,16 @@ TEST_CASE("a number beyond a double, a huge one and a misspelt section are named
   }
 }
 
+TEST_CASE("material check of a law without a volumetric term says incompressible, no inf", "[cli]") {
+  const auto file = write_config("incompressible.json",
+                                 R"({"name": "soft", "law": "neo_hookean", "C10_MPa": 0.1, "D_per_MPa": [0], "density_g_cm3": 1.07})");
+  const auto r = run_softarm("material check " + file);
+  INFO(r.output);
+  CHECK(r.exit_code == 0);
+  CHECK_THAT(r.output, Catch::Contains("incompressible (no volumetric term)"));
+  CHECK(r.output.find("inf") == std::string::npos);
+}
+
 TEST_CASE("softarm rejects bad 3CA and SPL input with the field named", "[cli]") {
   const std::string sizes = R"("wall_thickness_normalised": 0.466, "end_cap_thickness_normalised": 0.25,
     "ring_count_normalised": 0.375, "ring_thickness_normalised": 0.4)";
