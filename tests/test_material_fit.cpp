@@ -223,6 +223,8 @@ TEST_CASE("softarm material fit rejects malformed CSV naming the file, line and 
       {"non-increasing", header + "1.0,0\n1.5,0.3\n1.5,0.4\n", {"line 4", "1.5", "strictly increasing"}},
       {"non-positive stretch", header + "-0.5,-1\n1.0,0\n1.5,0.3\n", {"line 2", "-0.5", "> 0"}},
       {"wrong header", "lambda,P\n1.0,0\n1.5,0.3\n2,0.5\n", {"line 1", "lambda,P", "stretch,nominal_stress_MPa"}},
+      {"stress beyond any material", header + "1.0,0\n1.5,1e308\n2.0,1.5e308\n", {"line 3", "1e308", "1e+06 MPa"}},
+      {"no stress at all", header + "1.0,0\n1.5,0\n2.0,0\n", {"every nominal_stress_MPa is 0"}},
   };
   for (const auto& c : cases) {
     const auto file = scratch_file("bad.csv", c.text);

@@ -1,5 +1,6 @@
 #include "fem/materials/uniaxial_data.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -34,6 +35,8 @@ std::string shortest(double x) {
   s << x;
   return s.str();
 }
+
+constexpr double kMaxNominalStress_MPa = 1e6;
 
 class CsvErrors {
  public:
@@ -82,6 +85,11 @@ UniaxialData parse_uniaxial_csv(const std::string& text, const std::string& file
     const double stretch = errors.number(line, "stretch", fields[0]);
     const double stress = errors.number(line, "nominal_stress_MPa", fields[1]);
     if (stretch <= 0.0) errors.raise(line, "stretch " + fields[0] + " is out of range; valid: > 0");
+    // 10⁶ MPa is a thousand times any elastomer's (or ABS's) strength: beyond it the data are in the
+    // wrong unit or corrupt, and the fits' sums of squares overflow (1e308 printed inf and -nan).
+    if (std::abs(stress) > kMaxNominalStress_MPa)
+      errors.raise(line, "nominal_stress_MPa " + fields[1] + " is out of range; valid: magnitude <= " +
+                             shortest(kMaxNominalStress_MPa) + " MPa (is the column in MPa?)");
     if (!data.stretch.empty() && stretch <= data.stretch.back())
       errors.raise(line, "stretch " + fields[0] + " does not increase (line " + std::to_string(previous_line) +
                              " has " + shortest(data.stretch.back()) + "); valid: strictly increasing stretches");
@@ -93,6 +101,11 @@ UniaxialData parse_uniaxial_csv(const std::string& text, const std::string& file
   if (data.stretch.size() < minimum_rows)
     throw InputError(file_name, "has " + std::to_string(data.stretch.size()) + " data rows; valid: at least " +
                                     std::to_string(minimum_rows));
+  // A fit needs data that load the material: with every stress zero each law's best fit is zero
+  // stiffness, which no law takes, and the user would learn only that no fit is Drucker stable.
+  if (std::all_of(data.nominal_stress_MPa.begin(), data.nominal_stress_MPa.end(), [](double p) { return p == 0.0; }))
+    throw InputError(file_name, "every nominal_stress_MPa is 0: the data carry no stiffness to fit; valid: the "
+                                "stresses a uniaxial test measured, in MPa");
   return data;
 }
 
