@@ -258,15 +258,28 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
                       "mode of this design. The returned state is the one at the largest pressure.";
       return out;
     }
+    Vector x_end = x;
+    NewtonReport landing;
     if (level >= 1.0) {
+      set_pressures(1.0);
+      landing = solve_newton(problem, x_end, solver, spec.newton);
+    }
+    if (level >= 1.0 && !landing.converged) {
+      // Volume control climbed past the requested pressure but Newton cannot land on it (a solver
+      // limited to a few iterations): no state at the requested pressure, so no answer; the stall
+      // of pressure control is reported at its last state.
+      x = x_stall;
+      level = last.pressure_kPa / spec.max_pressure_kPa;
+      set_pressures(level);
+      out.reached_pressure_kPa = last.pressure_kPa;
+      out.diagnosis = " Volume control from there climbed past the requested pressure without a maximum (" +
+                      vc.message + "), where Newton could not land on it (" + landing.message + ").";
+    } else if (level >= 1.0) {
       // No maximum, and the path climbed to the requested pressure: the stall was numerical (a thin
       // cap that balloons and tightens again, a Newton step pressure control could not take). Volume
       // control stops at the first state at or above it; Newton at exactly the requested pressure
-      // from there lands on it (the branch is stable again), else that state is reported.
-      Vector x_end = x;
-      set_pressures(1.0);
-      const NewtonReport landing = solve_newton(problem, x_end, solver, spec.newton);
-      if (landing.converged) x = x_end, level = 1.0;
+      // from there lands on it (the branch is stable again).
+      x = x_end, level = 1.0;
       set_pressures(level);
       const PressureState s{level * spec.max_pressure_kPa, chamber.volume(x),
                             pv_stiffness(problem, chamber, solver, x, spec.newton, nullptr),
@@ -282,9 +295,10 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
       out.history.push_back(s);  // invalidates `last`
       if (on_state) on_state(s, x);
       return out;
+    } else {
+      // No maximum: keep the pressure-controlled diagnosis below, with what volume control saw.
+      out.diagnosis = " Volume control from there: " + vc.message + ".";
     }
-    // No maximum: keep the pressure-controlled diagnosis below, with what volume control saw.
-    out.diagnosis = " Volume control from there: " + vc.message + ".";
   }
   // A stall with the loaded volume still stiff: is the tangent's lowest mode collapsing somewhere?
   std::string mode_note;
