@@ -272,6 +272,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
       level = last.pressure_kPa / spec.max_pressure_kPa;
       set_pressures(level);
       out.reached_pressure_kPa = last.pressure_kPa;
+      out.beyond_limit.clear();  // its states overshoot the requested pressure: not part of the answer
       out.diagnosis = " Volume control from there climbed past the requested pressure without a maximum (" +
                       vc.message + "), where Newton could not land on it (" + landing.message + ").";
     } else if (level >= 1.0) {
