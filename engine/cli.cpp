@@ -215,20 +215,8 @@ CLI::Validator finite_in(double lo, double hi, const std::string& unit) {
 std::string nearest_name(const std::string& given, const std::vector<std::string>& names) {
   std::string best;
   std::size_t best_distance = std::string::npos;
-  for (const std::string& name : names) {
-    std::vector<std::size_t> row(name.size() + 1);
-    for (std::size_t j = 0; j <= name.size(); ++j) row[j] = j;
-    for (std::size_t i = 1; i <= given.size(); ++i) {
-      std::size_t diagonal = row[0];
-      row[0] = i;
-      for (std::size_t j = 1; j <= name.size(); ++j) {
-        const std::size_t up = row[j];
-        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (given[i - 1] == name[j - 1] ? 0 : 1)});
-        diagonal = up;
-      }
-    }
-    if (row[name.size()] < best_distance) best_distance = row[name.size()], best = name;
-  }
+  for (const std::string& name : names)
+    if (const std::size_t d = fem::edit_distance(given, name); d < best_distance) best_distance = d, best = name;
   return best;
 }
 

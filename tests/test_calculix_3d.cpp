@@ -42,6 +42,7 @@
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/load_stepper.hpp"
 #include "support/test_problems.hpp"
+#include "support/text_file.hpp"
 #include "support/tube_meshes.hpp"
 
 using namespace softarm;
@@ -241,12 +242,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using softarm::test::read_text;
 
 }  // namespace
 

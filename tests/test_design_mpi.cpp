@@ -17,22 +17,14 @@
 #include <string>
 
 #include "fem/core/json_reader.hpp"
+#include "support/text_file.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-int run(const std::string& prefix, const std::string& args, const fs::path& log) {
-  const std::string cmd = prefix + std::string(SOFTARM_BINARY) + " " + args + " > " + log.string() + " 2>&1";
-  return WEXITSTATUS(std::system(cmd.c_str()));
-}
+using softarm::test::read_text;
+constexpr auto run = softarm::test::run_softarm_logged;
 
 // A measure's value without the wall times, which differ between any two runs.
 json without_times(json j) {

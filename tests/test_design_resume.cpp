@@ -16,16 +16,12 @@
 #include <vector>
 
 #include "fem/core/json_reader.hpp"
+#include "support/text_file.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using softarm::test::read_text;
 
 std::vector<std::string> lines_of(const fs::path& file) {
   std::vector<std::string> lines;
@@ -35,9 +31,8 @@ std::vector<std::string> lines_of(const fs::path& file) {
 }
 
 int run_design(const fs::path& config, const fs::path& out, int budget, const fs::path& log) {
-  const std::string cmd = std::string(SOFTARM_BINARY) + " design " + config.string() + " -o " + out.string() +
-                          " --max-evaluations " + std::to_string(budget) + " > " + log.string() + " 2>&1";
-  return WEXITSTATUS(std::system(cmd.c_str()));
+  return softarm::test::run_softarm_logged(
+      "", "design " + config.string() + " -o " + out.string() + " --max-evaluations " + std::to_string(budget), log);
 }
 }  // namespace
 

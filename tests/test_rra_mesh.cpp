@@ -22,6 +22,7 @@
 #include "fem/mesh/rra_design.hpp"
 #include "fem/mesh/rra_mesher.hpp"
 #include "fem/mesh/structured_mesh.hpp"
+#include "support/text_file.hpp"
 
 using namespace softarm::fem;
 
@@ -182,12 +183,7 @@ std::string input_error(const nlohmann::json& j) {
   return "";
 }
 
-std::string read_text(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using softarm::test::read_text;
 
 /// The whitespace-separated values of the DataArray named `name` in a .vtu text.
 std::vector<double> data_array(const std::string& text, const std::string& name) {

@@ -33,6 +33,7 @@
 #include "studies/study_points.hpp"
 #include "studies/study_spec.hpp"
 #include "support/browser_render.hpp"
+#include "support/text_file.hpp"
 
 using nlohmann::json;
 namespace fs = std::filesystem;
@@ -53,12 +54,7 @@ struct TempDir {  // one per test case and process: ctest runs test cases in par
   }
 };
 
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using softarm::test::read_text;
 
 fs::path write_json(const fs::path& file, const json& document) {
   std::ofstream(file) << document.dump(2) << "\n";
@@ -72,10 +68,8 @@ struct RunResult {
 
 /// `softarm <args>` (or `<prefix> softarm <args>`), one assembly thread so the FEM is deterministic.
 RunResult run_softarm(const std::string& args, const fs::path& log, const std::string& prefix = "") {
-  const std::string cmd = "SOFTARM_THREADS=1 " + prefix + std::string(SOFTARM_BINARY) + " " + args + " > " +
-                          log.string() + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), read_text(log)};
+  const int code = softarm::test::run_softarm_logged("SOFTARM_THREADS=1 " + prefix, args, log);
+  return {code, read_text(log)};
 }
 
 // The thesis RRA at mesh level 1 with 3 output pressures (about 0.5 s a point).

@@ -34,8 +34,6 @@ std::mutex& registry_mutex() {
 
 }  // namespace
 
-namespace {
-/// Levenshtein distance: the edits (insert, delete, replace) from a to b.
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
@@ -50,7 +48,6 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
   }
   return row[b.size()];
 }
-}  // namespace
 
 bool Range::contains(double x) const {
   if (!std::isfinite(x)) return false;

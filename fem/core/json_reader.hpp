@@ -88,4 +88,8 @@ nlohmann::json load_json_file(const std::string& file_name);
 /// The same checks on a document held in memory; `source` names it in messages.
 nlohmann::json parse_json_text(const std::string& text, const std::string& source);
 
+/// Levenshtein distance: the fewest insertions, deletions and replacements that turn a into b
+/// (what "did you mean" ranks a misspelt key or command by).
+std::size_t edit_distance(const std::string& a, const std::string& b);
+
 }  // namespace softarm::fem
