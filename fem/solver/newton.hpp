@@ -5,7 +5,8 @@
 // either the update normalised by the displacement or the energy norm |δx·r|
 // normalised by its first value; or, when the residual sits on its round-off
 // floor, update and energy norm both below tolerance, or the update below
-// tolerance and the residual no longer falling, within 100× its tolerance. One row per iteration is kept for the
+// tolerance and the residual no longer falling, within 100× its tolerance or within the floor that
+// rounding the positions leaves (residual_roundoff_floor). One row per iteration is kept for the
 // convergence table.
 #include <ostream>
 #include <vector>
@@ -15,6 +16,13 @@
 #include "fem/solver/linear_solver.hpp"
 
 namespace softarm::fem {
+
+/// The residual's round-off floor at positions x with tangent K: ε·‖ |K| |x| ‖ times
+/// kRoundoffFloorFactor (summation and the constitutive evaluation add to the ulp of each
+/// position). Newton accepts a residual that has stopped falling there once the update is below
+/// its tolerance.
+inline constexpr double kRoundoffFloorFactor = 10.0;
+double residual_roundoff_floor(const SparseMatrix& K, const Vector& x);
 
 struct NewtonSettings {
   int max_iterations = 20;
