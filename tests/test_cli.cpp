@@ -123,6 +123,18 @@ TEST_CASE("softarm rejects bad scene input with the field named", "[cli]") {
   }
 }
 
+TEST_CASE("the schema marks the lists a config must give as required, as the reader does", "[cli]") {
+  // Issue 35: the schema listed load.chamber_pressures_kPa as optional while omitting it was refused.
+  const auto tca = run_softarm("schema --scene tca");
+  REQUIRE(tca.exit_code == 0);
+  const auto line_of = [](const std::string& text, const std::string& key) {
+    const auto at = text.find("\n" + key + "  (");
+    return at == std::string::npos ? std::string() : text.substr(at + 1, text.find('\n', at + 1) - at - 1);
+  };
+  CHECK_THAT(line_of(tca.output, "load.chamber_pressures_kPa"), Catch::Contains("(required)"));
+  CHECK_THAT(line_of(tca.output, "load.output_pressures_kPa"), Catch::Contains("(optional)"));
+}
+
 TEST_CASE("softarm bare prints its help, --version its version, an unknown command the nearest name", "[cli]") {
   const auto bare = run_softarm("");
   CHECK(bare.exit_code == 0);
@@ -216,6 +228,7 @@ TEST_CASE("softarm rejects bad 3CA and SPL input with the field named", "[cli]")
   expect_input_error(tca(R"(, "centre_hole_diameter_mm": 30)", pressures), "geometry.centre_hole_diameter_mm");
   expect_input_error(tca("", R"("chamber_pressures_kPa": [1, 2])"), "load.chamber_pressures_kPa");
   expect_input_error(tca("", R"("chamber_pressures_kPa": [0, 0, 0])"), "load.chamber_pressures_kPa");
+  expect_input_error(tca("", ""), {"load.chamber_pressures_kPa", "required list is missing", "3 pressures (kPa)"});
   expect_input_error(tca("", pressures + R"(, "gravity_m_s2": [0, 1])"), "load.gravity_m_s2");
   expect_input_error(tca("", pressures, R"("sheath": "dragon_skin_99")"), "materials.sheath");
   const std::string tca_reduced_hex27 = tca("", pressures);

@@ -174,8 +174,18 @@ std::string JsonReader::choice(const std::string& key, const std::string& defaul
 
 std::vector<double> JsonReader::number_list(const std::string& key, Range range, const std::string& doc) {
   declare(key, "list of numbers", "(optional)", range.describe(), doc);
+  return has(key) ? read_number_list(key, range) : std::vector<double>{};
+}
+
+std::vector<double> JsonReader::required_number_list(const std::string& key, Range range, const std::string& doc,
+                                                     const std::string& expected) {
+  declare(key, "list of numbers", "(required)", range.describe(), doc);
+  if (!has(key)) throw InputError(field(key), "required list is missing; give " + expected);
+  return read_number_list(key, range);
+}
+
+std::vector<double> JsonReader::read_number_list(const std::string& key, const Range& range) const {
   std::vector<double> out;
-  if (!has(key)) return out;
   const auto& v = object_.at(key);
   if (!v.is_array()) throw InputError(field(key), "expected a list of numbers, got " + show(v));
   for (std::size_t i = 0; i < v.size(); ++i) {

@@ -48,6 +48,9 @@ class JsonReader {
   std::string choice(const std::string& key, const std::string& default_value,
                      const std::vector<std::string>& choices, const std::string& doc);
   std::vector<double> number_list(const std::string& key, Range range, const std::string& doc);
+  /// A list that must be given; `expected` says what, in the message when it is missing.
+  std::vector<double> required_number_list(const std::string& key, Range range, const std::string& doc,
+                                           const std::string& expected);
   bool has(const std::string& key) const;
   /// Sub-object reader (the key must hold an object); an absent key reads as {}.
   JsonReader object(const std::string& key, const std::string& doc);
@@ -65,6 +68,7 @@ class JsonReader {
  private:
   const nlohmann::json& at(const std::string& key, const std::string& type) const;
   double read_number(const std::string& key, const Range& range) const;  // validates, declares nothing
+  std::vector<double> read_number_list(const std::string& key, const Range& range) const;  // the same for a list
   void declare(const std::string& key, const std::string& type, const std::string& def, const std::string& range,
                const std::string& doc);
 

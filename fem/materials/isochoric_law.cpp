@@ -24,10 +24,8 @@ nlohmann::json IsochoricVolumetricLaw::to_json() const {
 VolumetricPolynomial IsochoricVolumetricLaw::read_volumetric(JsonReader& reader, int max_terms) {
   const std::string doc = "Abaqus volumetric coefficients D1..D" + std::to_string(max_terms) +
                           ", 1/MPa; U = sum (1/D_i)(J-1)^(2i), K0 = 2/D1; 0 = no term, [] = incompressible";
-  if (!reader.has("D_per_MPa"))
-    throw InputError(reader.field("D_per_MPa"),
-                     "required list is missing; give e.g. [0.7029] (K0 = 2/D1), or [] for an incompressible law");
-  const std::vector<double> D = reader.number_list("D_per_MPa", Range::non_negative(), doc);
+  const std::vector<double> D = reader.required_number_list(
+      "D_per_MPa", Range::non_negative(), doc, "e.g. [0.7029] (K0 = 2/D1), or [] for an incompressible law");
   if (D.size() > static_cast<std::size_t>(max_terms))
     throw InputError(reader.field("D_per_MPa"), "has " + std::to_string(D.size()) + " entries; valid for this law: at most " +
                                                     std::to_string(max_terms));

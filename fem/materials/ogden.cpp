@@ -27,10 +27,10 @@ Ogden::Ogden(std::vector<double> mu_MPa, std::vector<double> alpha, VolumetricPo
 }
 
 std::shared_ptr<const Ogden> Ogden::from_json(JsonReader& reader) {
-  if (!reader.has("mu_MPa")) throw InputError(reader.field("mu_MPa"), "required list of 1 to 3 moduli is missing");
-  if (!reader.has("alpha")) throw InputError(reader.field("alpha"), "required list of 1 to 3 exponents is missing");
-  auto mu = reader.number_list("mu_MPa", Range(), "Ogden moduli mu_i, MPa (mu0 = sum mu_i > 0)");
-  auto alpha = reader.number_list("alpha", Range(), "Ogden exponents alpha_i, nonzero, one per mu_i");
+  auto mu = reader.required_number_list("mu_MPa", Range(), "Ogden moduli mu_i, MPa (mu0 = sum mu_i > 0)",
+                                        "1 to 3 moduli (MPa)");
+  auto alpha = reader.required_number_list("alpha", Range(), "Ogden exponents alpha_i, nonzero, one per mu_i",
+                                           "1 to 3 exponents, one per mu_i");
   return std::make_shared<const Ogden>(std::move(mu), std::move(alpha), read_volumetric(reader, 3), reader.path());
 }
 

@@ -197,8 +197,9 @@ RraSceneSpec read_rra(JsonReader& root, ModelRequest& model_request) {
 
 /// load.chamber_pressures_kPa: exactly `count` peaks (kPa), ramped together.
 std::vector<double> read_chamber_pressures(JsonReader& load, std::size_t count, const std::string& which) {
-  const auto p = load.number_list("chamber_pressures_kPa", Range::non_negative(),
-                                  "peak pressure of chambers " + which + " (kPa), ramped together from 0");
+  const auto p = load.required_number_list("chamber_pressures_kPa", Range::non_negative(),
+                                           "peak pressure of chambers " + which + " (kPa), ramped together from 0",
+                                           std::to_string(count) + " pressures (kPa), chambers " + which);
   if (p.size() != count)
     throw InputError(load.field("chamber_pressures_kPa"), "needs " + std::to_string(count) + " pressures (chambers " +
                                                                which + "), got " + std::to_string(p.size()));
