@@ -460,9 +460,9 @@ TEST_CASE("extremes: RRA of Dragon Skin 10 stops by its ballooning pressure with
 TEST_CASE("extremes: near-incompressible silicone (D1 -> 0) converges without locking", "[extremes][rra]") {
   // To 20 kPa. At D1 = 1e-6 (K0/mu0 = 2e7) rounding the positions alone leaves the residual at
   // ~1e-4 of the load's scale early in the ramp, far above the 1e-8 tolerance: Newton accepts it
-  // there once the update is at round-off (fem/solver/newton.hpp, residual_roundoff_floor). Before
+  // there once its full step is at round-off (fem/solver/newton.hpp, residual_beyond_roundoff). Before
   // it did, every such step ran out of iterations and was cut back: ~1000 Newton iterations and
-  // 256 s for this path, now 30 load steps, 243 iterations and ~15 s (D1 = 1e-4: ~10 s).
+  // 256 s for this path; with it 36 load steps, 391 iterations, ~27 s of one core (D1 = 1e-4: ~10 s).
   const nlohmann::json load = {{"max_pressure_kPa", 20.0}, {"output_count", 1}};
   const auto reference =
       run_rra_case("D1 0.7029 (DS30), 20 kPa", {{"materials", {{"tube", dragon_skin_30_with_d1(0.7029)}}}, {"load", load}});
@@ -474,7 +474,7 @@ TEST_CASE("extremes: near-incompressible silicone (D1 -> 0) converges without lo
   REQUIRE(d4.path.outcome == PathOutcome::completed);
   REQUIRE(d6.path.outcome == PathOutcome::completed);
   // The round-off floor is accepted, not fought to the iteration limit at every step.
-  CHECK(d6.path.path.stats.newton_iterations < 400);
+  CHECK(d6.path.path.stats.newton_iterations < 600);
   const double e0 = reference.curve.back().extension_mm, e4 = d4.curve.back().extension_mm,
                e6 = d6.curve.back().extension_mm;
   INFO("extension at 20 kPa: D1 = 0.7029: " << e0 << " mm, 1e-4: " << e4 << " mm, 1e-6: " << e6 << " mm");

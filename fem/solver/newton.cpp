@@ -15,15 +15,15 @@ std::string scientific(double v) {
 }
 }  // namespace
 
-double residual_roundoff_floor(const SparseMatrix& K, const Vector& x) {
-  // Each position is known to one ulp, ε|x_j|, and the residual moves by K δx when x does: the
-  // residual cannot be resolved below ε |K| |x| entry by entry (|·| entrywise; K is stored in full).
-  // Where the bulk modulus dwarfs the shear modulus this is far above the load's scale times the
-  // tolerance: Dragon Skin 30 with D1 = 1e-6 (K0/μ0 = 2e7) at 0.7 % of 20 kPa sits at 1e-4 of it.
+double residual_beyond_roundoff(const SparseMatrix& K, const Vector& x, const Vector& r) {
+  // Each position is known to one ulp, ε|x_j|, and the residual moves by K δx when x does: entry i
+  // of the residual cannot be resolved below ε (|K| |x|)_i (|·| entrywise; K is stored in full).
+  // Entry by entry, so that the stiff rings' larger floor excuses no residual in the silicone.
   Vector bound = Vector::Zero(x.size());
   for (int j = 0; j < K.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(K, j); it; ++it) bound[it.row()] += std::abs(it.value()) * std::abs(x[j]);
-  return kRoundoffFloorFactor * std::numeric_limits<double>::epsilon() * bound.norm();
+  bound *= kRoundoffFloorFactor * std::numeric_limits<double>::epsilon();
+  return (r.cwiseAbs() - bound).cwiseMax(0.0).norm();
 }
 
 LinearSolver::Status factorize_tangent(LinearSolver& solver, const SparseMatrix& K, const NewtonSettings& settings) {
@@ -40,7 +40,7 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
     report.message = cur.status.reason + " at element " + std::to_string(cur.status.element);
     return report;
   }
-  double scale = 0.0, energy_norm0 = 0.0, last_update = 1e300, last_energy_norm = 1e300, previous_residual = 1e300;
+  double scale = 0.0, energy_norm0 = 0.0, last_update = 1e300, last_newton_step = 1e300, last_energy_norm = 1e300, previous_residual = 1e300;
   double best_residual = 1e300;  // of the earlier iterates
   int indefinite_without_progress = 0;
   for (int it = 0;; ++it) {
@@ -63,11 +63,15 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
     // its own: Newton is stirring round-off. The energy norm cannot say so when the step began
     // next to equilibrium, being relative to a first value that was already tiny (the SPL pose,
     // 256k dofs: a predicted start at 4e-5, then 3e-8 for 18 iterations with updates of 1e-13).
-    // "Within 100× its tolerance" or within the floor that rounding the positions leaves
-    // (residual_roundoff_floor), when that is higher: a nearly incompressible material's.
-    const double floor_ratio = std::max(100 * settings.residual_tolerance,
-                                        it >= 2 ? residual_roundoff_floor(cur.hessian, x) / scale : 0.0);
-    const bool at_floor = it >= 2 && update_ok && rel_res <= floor_ratio && rel_res > 0.5 * previous_residual;
+    // Or, where rounding the positions leaves a higher floor (a nearly incompressible material's),
+    // the full Newton step is at round-off and what the floor cannot explain is within 100× the
+    // tolerance (residual_beyond_roundoff). The full step, not the damped one: a short line-search
+    // step says nothing of how far equilibrium is.
+    const bool stalled = it >= 2 && rel_res > 0.5 * previous_residual;
+    const bool at_floor =
+        stalled && ((update_ok && rel_res <= 100 * settings.residual_tolerance) ||
+                    (last_newton_step <= settings.update_tolerance &&
+                     residual_beyond_roundoff(cur.hessian, x, cur.gradient) <= 100 * settings.residual_tolerance * scale));
     const bool new_best = rel_res <= 0.5 * best_residual;  // progress: half the best residual so far
     if ((residual_ok && (it == 0 || update_ok || energy_ok)) || (update_ok && energy_ok) || at_floor) {
       // With the guard on, an equilibrium reached on an indefinite tangent is not a stable one:
@@ -158,6 +162,7 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
     const double energy_norm = std::abs(slope) * alpha;
     if (it == 0) energy_norm0 = std::max(energy_norm, 1e-300);
     last_update = alpha * dx.norm() / std::max((x - X).norm(), 1e-3);
+    last_newton_step = last_update / alpha;
     last_energy_norm = energy_norm / energy_norm0;
     report.rows.push_back({it + 1, 0.0, last_update, last_energy_norm, alpha, report.tangent_positive_definite,
                            reused ? solver.cg_iterations - cg_before : 0});

@@ -5,8 +5,8 @@
 // either the update normalised by the displacement or the energy norm |δx·r|
 // normalised by its first value; or, when the residual sits on its round-off
 // floor, update and energy norm both below tolerance, or the update below
-// tolerance and the residual no longer falling, within 100× its tolerance or within the floor that
-// rounding the positions leaves (residual_roundoff_floor). One row per iteration is kept for the
+// tolerance and the residual no longer falling, within 100× its tolerance, or beyond the floor that
+// rounding the positions leaves by no more (residual_beyond_roundoff). One row per iteration is kept for the
 // convergence table.
 #include <ostream>
 #include <vector>
@@ -17,12 +17,13 @@
 
 namespace softarm::fem {
 
-/// The residual's round-off floor at positions x with tangent K: ε·‖ |K| |x| ‖ times
-/// kRoundoffFloorFactor (summation and the constitutive evaluation add to the ulp of each
-/// position). Newton accepts a residual that has stopped falling there once the update is below
-/// its tolerance.
+/// What of the residual r at positions x (tangent K) the round-off floor cannot explain:
+/// ‖ max(|r| − kRoundoffFloorFactor ε |K| |x|, 0) ‖, entrywise (summation and the constitutive
+/// evaluation add to the ulp of each position, hence the factor). Newton accepts a residual that has
+/// stopped falling once its full step is below the update tolerance and this is within 100× the
+/// residual tolerance.
 inline constexpr double kRoundoffFloorFactor = 10.0;
-double residual_roundoff_floor(const SparseMatrix& K, const Vector& x);
+double residual_beyond_roundoff(const SparseMatrix& K, const Vector& x, const Vector& r);
 
 struct NewtonSettings {
   int max_iterations = 20;
