@@ -168,14 +168,15 @@ GradientOperator<E> gradient_operator(const ReferencePoint<E>& p) {
   return B;
 }
 
-/// K += Bᵀ D B for a symmetric 5×5 D, using the structure of B: the r-dof of
-/// node a touches rows {0, 1, 4} (∂N/∂R, ∂N/∂Z, N/R) and the z-dof rows {2, 3}.
-/// About four times cheaper than the dense product; it is the element's hot loop.
-template <class E, class Matrix>
-void add_BtDB(const ReferencePoint<E>& p, const Eigen::Matrix<double, kActive, kActive>& D, Matrix& K) {
-  constexpr int n = E::kNodes;
-  // DB = D B, column by column.
-  Eigen::Matrix<double, kActive, 2 * n> DB;
+/// Upper triangle (row <= column) of K += Bᵀ D B for a symmetric 5×5 D, using the structure of B:
+/// the r-dof of node a touches rows {0, 1, 4} (∂N/∂R, ∂N/∂Z, N/R) and the z-dof rows {2, 3}. About
+/// four times cheaper than the dense product. K is row-major so that each row's update runs over
+/// contiguous columns; the form mirrors the sum over an element's points once (as the hexahedron's).
+template <class E, class UpperMatrix>
+void add_BtDB_upper(const ReferencePoint<E>& p, const Eigen::Matrix<double, kActive, kActive>& D, UpperMatrix& K) {
+  static_assert(UpperMatrix::IsRowMajor, "add_BtDB_upper accumulates into a row-major matrix");
+  constexpr int n = E::kNodes, m = 2 * n;
+  Eigen::Matrix<double, kActive, m, Eigen::RowMajor> DB;  // D B, column by column
   for (int b = 0; b < n; ++b) {
     const double br = p.dN_dR[b], bz = p.dN_dZ[b], bh = p.N[b] / p.R;
     DB.col(2 * b) = D.col(0) * br + D.col(1) * bz + D.col(4) * bh;
@@ -183,16 +184,10 @@ void add_BtDB(const ReferencePoint<E>& p, const Eigen::Matrix<double, kActive, k
   }
   for (int a = 0; a < n; ++a) {
     const double ar = p.dN_dR[a], az = p.dN_dZ[a], ah = p.N[a] / p.R;
-    for (int col = 2 * a; col < 2 * n; ++col) {  // upper triangle, mirrored below
-      const double kr = ar * DB(0, col) + az * DB(1, col) + ah * DB(4, col);
-      K(2 * a, col) += kr;
-      if (col != 2 * a) K(col, 2 * a) += kr;
-      if (col >= 2 * a + 1) {
-        const double kz = ar * DB(2, col) + az * DB(3, col);
-        K(2 * a + 1, col) += kz;
-        if (col != 2 * a + 1) K(col, 2 * a + 1) += kz;
-      }
-    }
+    const int r = 2 * a, z = r + 1;
+    K.row(r).tail(m - r).noalias() +=
+        ar * DB.row(0).tail(m - r) + az * DB.row(1).tail(m - r) + ah * DB.row(4).tail(m - r);
+    K.row(z).tail(m - z).noalias() += ar * DB.row(2).tail(m - z) + az * DB.row(3).tail(m - z);
   }
 }
 

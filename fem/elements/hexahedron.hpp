@@ -211,24 +211,25 @@ GradientOperator<E> gradient_operator(const ReferencePoint<E>& p) {
   return B;
 }
 
-/// K += Bᵀ D B for a symmetric 9×9 D, using the structure of B (three non-zeros
-/// per column, see gradient_operator): 3× fewer operations than the dense product.
-template <class E, class Matrix>
-void add_BtDB(const ReferencePoint<E>& p, const Eigen::Matrix<double, kActive, kActive>& D, Matrix& K) {
-  constexpr int n = E::kNodes;
-  Eigen::Matrix<double, kActive, 3 * n> DB;  // D B, column by column
+/// Upper triangle (row <= column) of K += Bᵀ D B for a symmetric 9×9 D, using the structure of B
+/// (three non-zeros per column, see gradient_operator): 3× fewer operations than the dense product.
+/// K is row-major so that each row's update runs over contiguous columns (vectorised); the form
+/// mirrors the sum over an element's points once (the element's hot loop: 19 % of a 3CA cell run's
+/// samples when each point wrote both triangles entry by entry).
+template <class E, class UpperMatrix>
+void add_BtDB_upper(const ReferencePoint<E>& p, const Eigen::Matrix<double, kActive, kActive>& D, UpperMatrix& K) {
+  static_assert(UpperMatrix::IsRowMajor, "add_BtDB_upper accumulates into a row-major matrix");
+  constexpr int n = E::kNodes, m = 3 * n;
+  Eigen::Matrix<double, kActive, m, Eigen::RowMajor> DB;  // D B, column by column
   for (int b = 0; b < n; ++b)
     for (int k = 0; k < 3; ++k)
       DB.col(3 * b + k) = D.col(3 * k) * p.dN_dX(b, 0) + D.col(3 * k + 1) * p.dN_dX(b, 1) + D.col(3 * k + 2) * p.dN_dX(b, 2);
   for (int a = 0; a < n; ++a)
     for (int i = 0; i < 3; ++i) {
-      const int row = 3 * a + i;
-      for (int col = row; col < 3 * n; ++col) {  // upper triangle, mirrored below
-        const double k = p.dN_dX(a, 0) * DB(3 * i, col) + p.dN_dX(a, 1) * DB(3 * i + 1, col) +
-                         p.dN_dX(a, 2) * DB(3 * i + 2, col);
-        K(row, col) += k;
-        if (col != row) K(col, row) += k;
-      }
+      const int row = 3 * a + i, length = m - row;
+      K.row(row).tail(length).noalias() += p.dN_dX(a, 0) * DB.row(3 * i).tail(length) +
+                                           p.dN_dX(a, 1) * DB.row(3 * i + 1).tail(length) +
+                                           p.dN_dX(a, 2) * DB.row(3 * i + 2).tail(length);
     }
 }
 

@@ -9,7 +9,7 @@
 // element type E (kNodes, kGaussPoints, kDilatationModes, name):
 //   ReferencePoint<E> (members dV and phi), and the functions found by
 //   argument-dependent lookup reference_points<E>, deformation_gradient<E>,
-//   gradient_operator<E> and add_BtDB<E>, working on the `Active` components
+//   gradient_operator<E> and add_BtDB_upper<E>, working on the `Active` components
 //   `Components` (row 3i+J of the row-major 9-vector of F) that vary in that family.
 // Included only by the .cpp files that instantiate it.
 #include <Eigen/Eigenvalues>
@@ -241,6 +241,9 @@ class ProjectedDilatationForm final : public ElasticForm {
     }
 
     Eigen::Matrix<double, kModes, kDofs> G = Eigen::Matrix<double, kModes, kDofs>::Zero();
+    // Σ_q Bᵀ D_q B dV_q, upper triangle (the kernels' row-major accumulator), mirrored after the loop.
+    Eigen::Matrix<double, kDofs, kDofs, Eigen::RowMajor> K_upper;
+    if (want_hessian) K_upper.setZero();
     for (int q = 0; q < E::kGaussPoints; ++q) {
       const Point<E>& p = points[q];
       const auto s = evaluate_principal(law, F[q], want_hessian);
@@ -271,7 +274,11 @@ class ProjectedDilatationForm final : public ElasticForm {
         if (want_hessian) tangent += dU * jacobian_hessian(J[q], Finv);
       }
       if (want_gradient) out.g.noalias() += p.dV * B.transpose() * stress;
-      if (want_hessian) add_BtDB<E>(p, MatA(p.dV * tangent), out.K);
+      if (want_hessian) add_BtDB_upper<E>(p, MatA(p.dV * tangent), K_upper);
+    }
+    if (want_hessian) {
+      out.K += K_upper + K_upper.transpose();  // its lower triangle is zero
+      out.K.diagonal() -= K_upper.diagonal();
     }
     if (projected && want_hessian) {
       const auto PG = (projection_inverse_[e] * G).eval();
