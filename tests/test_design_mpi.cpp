@@ -1,10 +1,10 @@
 // `mpirun -np 2 softarm design …` gives the serial answer (engine/design/cell_cluster.hpp): the
 // verification's cells spread over two ranks come back exactly, so the design, the accurate model's
 // verdict and every measure of it equal a serial run's, bit for bit (times aside).
-// Model: the thesis requirements with the wall thickness the only variable, one evaluation and no
-// correction round (one verification), the cells' layers as at level 1 and 4 outputs along their ramp
-// (a sixth of the rung's cost: what is compared is one set of cells computed two ways, which holds on
-// any mesh). One thread in every process: the lone RRA's FEM and the rod, which run on rank 0 alone,
+// Model: the thesis requirements at 200 kPa with the wall thickness the only variable, one evaluation
+// and no correction round (one verification), the cells' layers as at level 1 and 4 outputs along
+// their ramp (what is compared is one set of cells computed two ways, which holds on any mesh and
+// at any pressure). One thread in every process: the lone RRA's FEM and the rod, which run on rank 0 alone,
 // round off differently with another thread count (within 1e-12, which the reproducibility script's
 // 0.5 % test allows; this test asks for every bit).
 #include <unistd.h>
@@ -52,6 +52,9 @@ TEST_CASE("two MPI ranks give the serial design, its cells spread over them", "[
   doc["check"]["solid_segment"] = 0;
   doc["check"]["cell_layers_level"] = 1;
   doc["check"]["cell_levels"] = 4;
+  // 200 kPa instead of 344.7: the arm still bends 51-61 deg a segment and lifts 0.25 kg on the cells,
+  // at two thirds of the cost (39 s a run instead of 60 s, idle).
+  doc["requirements"]["max_pressure_kPa"] = 200.0;
   // What is compared does not need the optimum's peaks one RRA level finer, nor a finer re-check.
   doc["check"]["mesh_sensitivity"] = false;
   doc["check"]["pressure_steps"] = doc["model"]["pressure_steps"];
