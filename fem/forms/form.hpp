@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "fem/assembly/sparse_pattern.hpp"
+#include "fem/sparse/sparse_pattern.hpp"
 
 namespace softarm::fem {
 

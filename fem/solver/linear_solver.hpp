@@ -18,7 +18,7 @@
 #include <Eigen/UmfPackSupport>
 #include <memory>
 
-#include "fem/assembly/sparse_pattern.hpp"
+#include "fem/sparse/sparse_pattern.hpp"
 #include "fem/solver/preconditioned_cg.hpp"
 
 namespace softarm::fem {

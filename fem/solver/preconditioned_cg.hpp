@@ -11,7 +11,7 @@
 // on which the caller factorises instead (and learns the inertia from CHOLMOD).
 #include <functional>
 
-#include "fem/assembly/sparse_pattern.hpp"
+#include "fem/sparse/sparse_pattern.hpp"
 
 namespace softarm::fem {
 

@@ -1,4 +1,4 @@
-#include "fem/assembly/sparse_pattern.hpp"
+#include "fem/sparse/sparse_pattern.hpp"
 
 #include <algorithm>
 #include <stdexcept>
