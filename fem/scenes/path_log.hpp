@@ -18,7 +18,8 @@
 #include <utility>
 #include <vector>
 
-#include "fem/scenes/pressure_path.hpp"
+#include "fem/scenes/pressure_state.hpp"
+#include "fem/solver/load_stepper.hpp"
 
 namespace softarm::fem {
 

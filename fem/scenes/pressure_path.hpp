@@ -15,18 +15,10 @@
 #include <vector>
 
 #include "fem/forms/chamber_pressure_form.hpp"
+#include "fem/scenes/pressure_state.hpp"
 #include "fem/solver/load_stepper.hpp"
 
 namespace softarm::fem {
-
-struct PressureState {
-  double pressure_kPa = 0.0;
-  double chamber_volume_mm3 = 0.0;         // Σ f_i V_i over the loaded chambers
-  double pv_stiffness_kPa_per_mm3 = 0.0;   // dp/dV at this state
-  bool tangent_positive_definite = true;
-  int newton_iterations = 0;
-  bool is_output = false;
-};
 
 enum class PathOutcome { completed, limit_point, stalled };
 inline const char* to_string(PathOutcome o) {
