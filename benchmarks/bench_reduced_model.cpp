@@ -19,10 +19,10 @@
 #include <vector>
 
 #include "fem/scenes/scene_config.hpp"
-#include "fem/reduced/reduced_scenes.hpp"
+#include "fem/scenes/reduced_scenes.hpp"
 #include "fem/reduced/spatial_rod.hpp"
 #include "fem/scenes/tca_scene.hpp"
-#include "fem/reduced/rra_calibration.hpp"
+#include "fem/scenes/rra_calibration.hpp"
 #include "objectives/arm_evaluation.hpp"
 #include "objectives/payload_capacity.hpp"
 

@@ -47,8 +47,8 @@
 #include "engine/design/design_problem.hpp"
 #include "fem/core/json_reader.hpp"
 #include "fem/reduced/arm_rod.hpp"
-#include "fem/reduced/rra_calibration.hpp"
-#include "fem/scenes/tca_cell.hpp"
+#include "fem/scenes/rra_calibration.hpp"
+#include "fem/scenes/tca_cell_rod.hpp"
 #include "objectives/solid_segment_check.hpp"
 
 using namespace softarm;

@@ -15,7 +15,7 @@
 #include "benchmarks/bench_scene.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
-#include "fem/scenes/tca_cell.hpp"
+#include "fem/scenes/tca_cell_rod.hpp"
 #include "fem/scenes/twist_compliance.hpp"
 
 using namespace softarm;

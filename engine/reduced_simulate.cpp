@@ -5,9 +5,9 @@
 
 #include "engine/output_files.hpp"
 #include "engine/spl_report.hpp"
-#include "fem/reduced/reduced_scenes.hpp"
+#include "fem/scenes/reduced_scenes.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
-#include "fem/scenes/tca_cell.hpp"
+#include "fem/scenes/tca_cell_rod.hpp"
 
 namespace softarm::engine {
 namespace {

@@ -28,7 +28,7 @@
 
 #include "fem/mesh/spl_design.hpp"
 #include "fem/reduced/arm_rod.hpp"
-#include "fem/reduced/rra_calibration.hpp"
+#include "fem/scenes/rra_calibration.hpp"
 
 namespace softarm::objectives {
 

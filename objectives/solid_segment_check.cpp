@@ -6,7 +6,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "fem/scenes/tca_cell.hpp"
+#include "fem/scenes/tca_cell_rod.hpp"
 #include "fem/scenes/tca_scene.hpp"
 
 namespace softarm::objectives {

@@ -6,7 +6,7 @@
 
 #include "fem/core/input_error.hpp"
 #include "fem/materials/burst_criteria.hpp"
-#include "fem/reduced/reduced_scenes.hpp"
+#include "fem/scenes/reduced_scenes.hpp"
 #include "fem/scenes/scene_config.hpp"
 
 namespace softarm::studies {

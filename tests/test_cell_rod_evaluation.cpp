@@ -9,7 +9,7 @@
 #include "engine/design/design_config.hpp"
 #include "engine/design/design_problem.hpp"
 #include "fem/core/json_reader.hpp"
-#include "fem/scenes/tca_cell.hpp"
+#include "fem/scenes/tca_cell_rod.hpp"
 #include "objectives/cell_rod_evaluation.hpp"
 
 using namespace softarm;

@@ -10,10 +10,10 @@
 
 #include "fem/core/input_error.hpp"
 #include "fem/core/json_reader.hpp"
-#include "fem/reduced/reduced_scenes.hpp"
+#include "fem/scenes/reduced_scenes.hpp"
 #include "fem/scenes/fidelity.hpp"
 #include "fem/scenes/scene_config.hpp"
-#include "fem/scenes/tca_cell.hpp"
+#include "fem/scenes/tca_cell_rod.hpp"
 
 using namespace softarm::fem;
 using nlohmann::json;

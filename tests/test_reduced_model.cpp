@@ -10,7 +10,7 @@
 #include "fem/materials/drucker_stability.hpp"
 #include "fem/mesh/tca_mesher.hpp"
 #include "fem/reduced/arm_rod.hpp"
-#include "fem/reduced/rra_calibration.hpp"
+#include "fem/scenes/rra_calibration.hpp"
 #include "fem/scenes/solid_scene_support.hpp"
 #include "fem/scenes/tca_scene.hpp"
 

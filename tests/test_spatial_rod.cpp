@@ -8,7 +8,7 @@
 
 #include "fem/core/json_reader.hpp"
 #include "fem/reduced/arm_rod.hpp"
-#include "fem/reduced/reduced_scenes.hpp"
+#include "fem/scenes/reduced_scenes.hpp"
 #include "fem/reduced/spatial_rod.hpp"
 
 using namespace softarm::fem;

@@ -12,7 +12,7 @@
 #include "fem/core/json_reader.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
-#include "fem/scenes/tca_cell.hpp"
+#include "fem/scenes/tca_cell_rod.hpp"
 
 using namespace softarm::fem;
 using nlohmann::json;

@@ -11,7 +11,7 @@
 
 #include "fem/reduced/rod_section.hpp"
 #include "fem/scenes/scene_config.hpp"
-#include "fem/scenes/tca_cell.hpp"
+#include "fem/scenes/tca_cell_rod.hpp"
 #include "support/untapered_3ca.hpp"
 
 using namespace softarm::fem;

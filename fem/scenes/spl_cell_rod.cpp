@@ -6,7 +6,7 @@
 
 #include "fem/core/parallel.hpp"
 #include "fem/reduced/rod_layout.hpp"
-#include "fem/scenes/tca_cell.hpp"
+#include "fem/scenes/tca_cell_rod.hpp"
 
 namespace softarm::fem {
 namespace {

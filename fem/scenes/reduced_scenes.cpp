@@ -1,10 +1,10 @@
-#include "fem/reduced/reduced_scenes.hpp"
+#include "fem/scenes/reduced_scenes.hpp"
 
 #include <algorithm>
 #include <chrono>
 
 #include "fem/reduced/fibre_law.hpp"
-#include "fem/reduced/rra_calibration.hpp"
+#include "fem/scenes/rra_calibration.hpp"
 
 namespace softarm::fem {
 namespace {

@@ -1,4 +1,4 @@
-#include "fem/reduced/rra_calibration.hpp"
+#include "fem/scenes/rra_calibration.hpp"
 
 #include <algorithm>
 #include <chrono>
