@@ -429,7 +429,7 @@ void check_design_bound_corners(const char* material) {
         ++ran;
       }
   CHECK(ran == 5);
-  CHECK(refused == 1);  // wall 0.9 with ring 0.95: a groove deeper than the wall
+  CHECK(refused == 1);  // wall 0.1 with ring 0.95: a groove deeper than the wall
 }
 }  // namespace
 
