@@ -64,7 +64,6 @@ class ActuatorSection {
   std::vector<Eigen::Vector2d> raw_points(const SectionGeometry& g) const;
   int actuators_, level_;
   bool hole_;
-  int rays_, kite_, radial_;  // per actuator: N rays, kite m×m, radial elements V
   int num_nodes_ = 0;
   std::vector<int> unique_of_raw_;
   std::vector<int> raw_of_unique_;
