@@ -390,28 +390,26 @@ TEST_CASE("extremes: RRA end caps 0.05 balloon at a limit point, 1.0 holds", "[e
 
 // Issue 38: walls 0.1 and 0.9 of r_b, end caps 0.05 (and 1.0 on the thick wall), ring thickness
 // 0.15 and 0.95, in Dragon Skin 10, 20 and 30 (one test case each, so that ctest runs them side by
-// side), to 400 kPa: each reaches the pressure, a traced limit point, or is refused naming the field
-// (a groove deeper than the wall). Pressure control hands over to chamber-volume control at every
-// stall, which accepts a residual on its round-off floor as Newton does (two designs were traced to
-// their limit points once it did). Two thick-walled Dragon Skin 10 designs still stall under both
-// controls (Newton wanders between definite and indefinite tangents, an element inverting, near 40
-// and 364 kPa: issue 38 stays open): they are listed, and the test fails if one of them stops
-// stalling (update the list) or any other design stalls. The full grid (edges, 206.8 kPa, the
-// wall-0.1 cap-1.0 corners at ~75 s each, mesh level 2): build/benchmarks/bench_extremes_grid.
+// side), to 400 kPa: each reaches the pressure, a limit point, or is refused naming the field (a
+// groove deeper than the wall); none stalls. Pressure control hands over to chamber-volume control
+// at every stall; where that stops too, the fold estimate (fem/solver/fold_estimate.hpp) finds the
+// thick-walled Dragon Skin 10 designs' folds: the 0.45 mm cap ballooning at the axis over the
+// 0.9 mm bore (39.98 kPa; 40.64 at mesh level 2), and the bore's end under the 9 mm cap (364.4 kPa).
+// The fold of the first is checked independently: pressure control reaches 0.998 of it. The full
+// grid (edges, 206.8 kPa, the wall-0.1 cap-1.0 corners at ~75 s each, mesh level 2):
+// build/benchmarks/bench_extremes_grid.
 namespace {
 void check_design_bound_corners(const char* material) {
-  const std::set<std::string> known_stalls = {"dragon_skin_10 wall 0.9 cap 0.05 ring 0.15",
-                                              "dragon_skin_10 wall 0.9 cap 1.00 ring 0.95"};
   int refused = 0, ran = 0;
   for (double wall : {0.1, 0.9})
     for (double cap : {0.05, 1.0})
       for (double ring : {0.15, 0.95}) {
         if (wall < 0.5 && cap > 0.5) continue;  // the slow corners: the benchmark's
-        const nlohmann::json patch = {{"geometry", {{"wall_thickness_normalised", wall},
-                                                    {"end_cap_thickness_normalised", cap},
-                                                    {"ring_thickness_normalised", ring}}},
-                                      {"materials", {{"tube", material}}},
-                                      {"load", {{"max_pressure_kPa", 400.0}, {"output_count", 4}}}};
+        nlohmann::json patch = {{"geometry", {{"wall_thickness_normalised", wall},
+                                              {"end_cap_thickness_normalised", cap},
+                                              {"ring_thickness_normalised", ring}}},
+                                {"materials", {{"tube", material}}},
+                                {"load", {{"max_pressure_kPa", 400.0}, {"output_count", 4}}}};
         char name[96];
         std::snprintf(name, sizeof name, "%s wall %.1f cap %.2f ring %.2f", material, wall, cap, ring);
         fem::RraSceneSpec spec;
@@ -425,15 +423,22 @@ void check_design_bound_corners(const char* material) {
         }
         const auto r = run_rra_case(name, spec);
         INFO(name << ": " << r.path.diagnosis);
-        CHECK((r.path.outcome == PathOutcome::stalled) == (known_stalls.count(name) > 0));
+        CHECK(r.path.outcome != PathOutcome::stalled);
         ++ran;
+        if (r.path.limit_kind == fem::LimitKind::fold && r.path.estimated_limit_pressure_kPa < 100.0) {
+          // Not an artefact of where pressure control gave up: the path holds up to just below the fold.
+          patch["load"] = {{"max_pressure_kPa", 0.998 * r.path.estimated_limit_pressure_kPa}, {"output_count", 1}};
+          const auto below = fem::run_rra_scene(rra_spec(patch));
+          INFO("to 0.998 of the fold: " << below.path.diagnosis);
+          CHECK(below.path.outcome == PathOutcome::completed);
+        }
       }
   CHECK(ran == 5);
   CHECK(refused == 1);  // wall 0.1 with ring 0.95: a groove deeper than the wall
 }
 }  // namespace
 
-TEST_CASE("extremes: corners of the design bounds to 400 kPa, Dragon Skin 10: no stall but the known ones",
+TEST_CASE("extremes: corners of the design bounds to 400 kPa, Dragon Skin 10: no stall",
           "[extremes][rra][grid]") {
   check_design_bound_corners("dragon_skin_10");
 }

@@ -9,6 +9,7 @@
 #include "fem/core/number_text.hpp"
 #include "fem/scenes/path_log.hpp"
 #include "fem/solver/lowest_modes.hpp"
+#include "fem/solver/fold_estimate.hpp"
 #include "fem/solver/volume_control.hpp"
 
 namespace softarm::fem {
@@ -250,6 +251,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
     out.reached_pressure_kPa = level * spec.max_pressure_kPa;
     if (vc.passed_peak) {
       out.outcome = PathOutcome::limit_point;
+      out.limit_kind = LimitKind::traced;
       out.estimated_limit_pressure_kPa = vc.peak_level * spec.max_pressure_kPa;
       out.diagnosis = "limit point (ballooning) at " + fmt(out.estimated_limit_pressure_kPa) +
                       " kPa: chamber-volume control followed the path past the pressure maximum (" + vc.message +
@@ -332,8 +334,20 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
   }
   const bool local_instability = out.lowest_eigenvalue_ratio > 0 && out.lowest_eigenvalue_ratio < spec.limit.lowest_mode_fraction;
   const std::string volume_note = out.diagnosis;
+  // A fold that neither dp/dV nor the lowest eigenvalue shows: one of the few lowest eigenvalues
+  // falling to zero just ahead (fem/solver/fold_estimate.hpp), at the last converged state.
+  FoldEstimate fold;
+  if (!flattened && !local_instability && spec.limit.check_lowest_mode && spec.limit.fold_margin > 0 &&
+      out.history.size() >= 2) {
+    fold = estimate_fold(problem, solver, x_stall, last.pressure_kPa / spec.max_pressure_kPa, set_pressures,
+                         spec.limit.fold_modes);
+    set_pressures(out.reached_pressure_kPa / spec.max_pressure_kPa);
+  }
+  const double fold_kPa = std::max(fold.load * spec.max_pressure_kPa, out.reached_pressure_kPa);
+  const bool fold_ahead = fold.found && fold_kPa <= last.pressure_kPa * (1 + spec.limit.fold_margin);
   if (flattened) {
     out.outcome = PathOutcome::limit_point;
+    out.limit_kind = LimitKind::pressure_volume;
     out.estimated_limit_pressure_kPa = last.pressure_kPa;
     // Peak of the quadratic p(V) through the last two states' slopes.
     if (out.history.size() >= 2) {
@@ -352,6 +366,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
                     " kPa. Pressure control cannot pass it; this is the burst mode of this design." + volume_note;
   } else if (local_instability) {
     out.outcome = PathOutcome::limit_point;
+    out.limit_kind = LimitKind::lowest_mode;
     out.estimated_limit_pressure_kPa = last.pressure_kPa;
     out.diagnosis = "local limit point at " + fmt(last.pressure_kPa) + " kPa: pressure control stopped (" +
                     to_string(out.path.failure) + ") where the tangent's lowest mode has lost almost all its "
@@ -359,6 +374,24 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
                     " % of its initial value, is above the limit-point threshold: an instability the loaded volume "
                     "barely shows (in a 3CA, a chamber wall ballooning between two rings). The burst pressure is at "
                     "or just above this one." + mode_note;
+  } else if (fold_ahead) {
+    out.outcome = PathOutcome::limit_point;
+    out.limit_kind = LimitKind::fold;
+    out.estimated_limit_pressure_kPa = fold_kPa;
+    std::string where;
+    if (spec.node_dimension > 0) {
+      const ModeExtent e = mode_extent(fold.mode, spec.node_dimension);
+      where = ", a mode that moves " + fmt(100 * e.participation, 2) + " % of the nodes, most at " +
+              node_location(problem.reference_positions(), e.peak_node, spec.node_dimension);
+    }
+    out.diagnosis = "local limit point (fold) at " + fmt(fold_kPa) + " kPa: pressure control stopped at " +
+                    fmt(last.pressure_kPa) + " kPa (" + to_string(out.path.failure) + ") where the tangent's eigenvalue " +
+                    std::to_string(fold.mode_index + 1) + " of " + std::to_string(fold.eigenvalues_computed) + where +
+                    ", falls to zero " + fmt(fold_kPa - last.pressure_kPa, 3) + " kPa ahead (" + fmt(fold.eigenvalue, 3) +
+                    " N/mm, falling by " + fmt(-fold.rate / spec.max_pressure_kPa, 3) +
+                    " N/mm per kPa: the square root of the distance to the fold). The path folds there, an instability "
+                    "the loaded volume barely shows (dp/dV " + fmt(100 * ratio, 3) +
+                    " % of its initial value): the burst pressure of this design." + mode_note + volume_note;
   } else {
     out.outcome = PathOutcome::stalled;
     // Well above the threshold the path is plainly not at a limit point; close to it,

@@ -25,6 +25,21 @@ inline const char* to_string(PathOutcome o) {
   return o == PathOutcome::completed ? "completed" : o == PathOutcome::limit_point ? "limit_point" : "stalled";
 }
 
+/// How a limit point was found: traced past the pressure maximum by chamber-volume control; where
+/// the chamber's dp/dV fell to zero (extrapolated to its peak); where the tangent's lowest eigenvalue
+/// collapsed (a local mode); or where one of its few lowest eigenvalues falls to zero just ahead
+/// (a fold, fem/solver/fold_estimate.hpp).
+enum class LimitKind { none, traced, pressure_volume, lowest_mode, fold };
+inline const char* to_string(LimitKind k) {
+  switch (k) {
+    case LimitKind::traced: return "traced";
+    case LimitKind::pressure_volume: return "pressure_volume";
+    case LimitKind::lowest_mode: return "lowest_mode";
+    case LimitKind::fold: return "fold";
+    default: return "none";
+  }
+}
+
 struct LimitPointSettings {
   /// dp/dV below this fraction of its initial value, at a failed step, means a limit point.
   double stiffness_fraction = 0.05;
@@ -44,6 +59,11 @@ struct LimitPointSettings {
   /// loaded volume does not show. Costs two factorisations and a few dozen solves, at a stall only.
   bool check_lowest_mode = true;
   double lowest_mode_fraction = 0.05;
+  /// With check_lowest_mode, a stall that none of the above explains is a fold where one of the
+  /// tangent's fold_modes lowest eigenvalues, extrapolated along the path, reaches zero within
+  /// fold_margin of the last converged pressure (fem/solver/fold_estimate.hpp).
+  int fold_modes = 4;
+  double fold_margin = 0.02;
   /// Volume control solves its bordered systems by CG on K + α∇V∇Vᵀ preconditioned with the
   /// starting tangent's Cholesky factor, factorising K (LU past the maximum) only where CG fails
   /// (VolumeControlSettings::augmented_cg). The 3D scenes' default: their LU costs seconds.
@@ -56,6 +76,7 @@ struct PressurePathResult {
   double reached_pressure_kPa = 0.0;
   double estimated_limit_pressure_kPa = 0.0;  // peak of p(V) when a limit point is found: traced past by
                                               // volume control, or extrapolated from the last states
+  LimitKind limit_kind = LimitKind::none;     // with outcome limit_point: how it was found
   PathResult path;
   /// With a checkpoint: the converged states taken from an earlier run's log (0: started
   /// from rest), and why an existing log was not resumed ("" if it was, or there was none).

@@ -79,6 +79,11 @@ void read_solver(JsonReader solver, fem::NewtonSettings& nw, fem::StepSettings& 
       "at a stall with dp/dV above the threshold, the tangent's lowest eigenvalue below this fraction of its value at "
       "rest is reported as a (local) limit point; 0 skips the check (two factorisations and a few dozen solves)");
   limit.check_lowest_mode = limit.lowest_mode_fraction > 0;
+  limit.fold_margin = solver.number(
+      "fold_margin", limit.fold_margin, Range::closed(0, 1),
+      "at a stall none of the above explains, one of the tangent's four lowest eigenvalues extrapolated to zero "
+      "within this fraction of the last converged pressure is a fold (a limit point, fem/solver/fold_estimate.hpp); "
+      "0: a stall stays a stall");
   limit.volume_control_by_cg = solver.boolean(
       "volume_control_by_cg", limit.volume_control_by_cg,
       "volume control solves by CG on K + a*dV*dV^T preconditioned with the starting tangent's Cholesky factor, "
