@@ -92,7 +92,14 @@ class ProjectedDilatationForm final : public ElasticForm {
     }
   }
 
-  std::string element_name() const override { return E::name; }
+  /// The element's name, saying "pointwise U(J)" where the volumetric energy is not projected.
+  std::string element_name() const override {
+    if (treatment_ != VolumetricTreatment::pointwise) return E::name;
+    std::string name = E::name;
+    if (const auto p1 = name.find("/P1"); p1 != std::string::npos) name.erase(p1, 3);  // no dilatation space
+    const auto at = name.find("projected dilatation");
+    return at == std::string::npos ? name + ", pointwise U(J)" : name.replace(at, 20, "pointwise U(J)");
+  }
 
   void declare_pattern(SparsePattern& pattern) override {
     blocks_.resize(mesh_.num_elements());
