@@ -5,8 +5,8 @@
 // corners), ring thickness ∈ {0.15, 0.55, 0.95}: the 8 corners and 12 edge midpoints of that box
 // plus the 4 corners with caps of 0.1, on the thesis RRA (configs/rra_thesis.json) in Dragon
 // Skin 10, 20 and 30, to 206.8 and 400 kPa. Prints one row per run that does not complete, the
-// count of each outcome per level (completed, limit point, stalled, refused as invalid input), the
-// time, and each limit pressure's change from level 1 to level 2.
+// count of each outcome per level (completed, limit point by how it was found, stalled, refused as
+// invalid input), the time, and each limit pressure's change from level 1 to level 2.
 //
 // Usage: bench_extremes_grid [--max-level L]
 #include <array>
@@ -55,6 +55,7 @@ std::vector<Case> grid() {
 
 struct Outcome {
   std::string kind;  // completed, limit_point, stalled, refused
+  std::string found_by;  // a limit point's fem::LimitKind (traced, pressure_volume, lowest_mode, fold)
   double limit_kPa = NAN, reached_kPa = NAN, seconds = 0;
   std::string words;
 };
@@ -73,7 +74,10 @@ Outcome run(const Case& c, int level) {
     const auto r = fem::run_rra_scene(fem::read_scene_config(s).rra);
     o.kind = fem::to_string(r.path.outcome);
     o.reached_kPa = r.path.reached_pressure_kPa;
-    if (r.path.outcome == fem::PathOutcome::limit_point) o.limit_kPa = r.path.estimated_limit_pressure_kPa;
+    if (r.path.outcome == fem::PathOutcome::limit_point) {
+      o.limit_kPa = r.path.estimated_limit_pressure_kPa;
+      o.found_by = fem::to_string(r.path.limit_kind);
+    }
     o.words = r.path.diagnosis;
   } catch (const fem::InputError& e) {
     o.kind = "refused";
@@ -97,7 +101,7 @@ int main(int argc, char** argv) {
     for (const Case& c : cases) {
       const Outcome o = run(c, level);
       results[level - 1].push_back(o);
-      ++count[o.kind];
+      ++count[o.found_by.empty() ? o.kind : o.kind + " (" + o.found_by + ")"];
       total += o.seconds;
       if (o.kind != "completed")
         std::printf("  %-52s %-11s reached %6.1f kPa  limit %6.1f kPa  %5.1f s  %.160s\n", c.name().c_str(),
