@@ -8,7 +8,7 @@
 #include "fem/core/json_reader.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "studies/results_store.hpp"
-#include "studies/study_points.hpp"
+#include "studies/scene_parameter.hpp"
 
 namespace softarm::studies {
 using fem::InputError;
