@@ -62,7 +62,7 @@
 
 #include "fem/core/parallel.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
-#include "fem/forms/elastic_form.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/materials/neo_hookean.hpp"
 #include "fem/mesh/tca_mesher.hpp"
 #include "fem/scenes/tca_export.hpp"

@@ -31,7 +31,7 @@
 
 #include "fem/assembly/energy_problem.hpp"
 #include "fem/core/parallel.hpp"
-#include "fem/forms/elastic_form.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/materials/material.hpp"
 #include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"

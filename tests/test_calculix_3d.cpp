@@ -35,8 +35,8 @@
 #include <unistd.h>
 
 #include "fem/forms/chamber_pressure_form.hpp"
-#include "fem/forms/elastic_form.hpp"
 #include "fem/forms/gravity_form.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/io/abaqus_writer.hpp"
 #include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"

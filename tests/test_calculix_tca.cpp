@@ -45,7 +45,7 @@
 #include <filesystem>
 
 #include "fem/forms/chamber_pressure_form.hpp"
-#include "fem/forms/elastic_form.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/mesh/tca_mesher.hpp"
 #include "fem/scenes/tca_export.hpp"
 #include "fem/scenes/tca_scene.hpp"

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "fem/forms/elastic_form.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/load_stepper.hpp"

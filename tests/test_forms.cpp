@@ -7,8 +7,8 @@
 // any wrong term (a missing geometric stiffness, a sign) shows as O(1).
 #include <catch2/catch.hpp>
 
-#include "fem/forms/elastic_form.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"
 #include "support/form_checks.hpp"

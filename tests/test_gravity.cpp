@@ -4,8 +4,8 @@
 #include <catch2/catch.hpp>
 #include <stdexcept>
 
-#include "fem/forms/elastic_form.hpp"
 #include "fem/forms/gravity_form.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/load_stepper.hpp"

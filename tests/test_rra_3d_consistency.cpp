@@ -25,7 +25,7 @@
 
 #include "fem/assembly/energy_problem.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
-#include "fem/forms/elastic_form.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/mesh/tca_mesher.hpp"
 #include "fem/scenes/rra_scene.hpp"
 #include "fem/scenes/solid_scene_support.hpp"

@@ -17,10 +17,10 @@
 #include <map>
 #include <vector>
 
-#include "fem/forms/elastic_form.hpp"
 #include "fem/elements/hexahedron.hpp"
 #include "fem/elements/serendipity_quad.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/forms/periodic_face_form.hpp"
 #include "fem/forms/plane_face_form.hpp"
 #include "fem/mesh/chamber_lids.hpp"

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "fem/core/parallel.hpp"
-#include "fem/forms/elastic_form.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/load_stepper.hpp"
 #include "fem/solver/lowest_modes.hpp"

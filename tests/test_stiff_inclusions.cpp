@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "fem/assembly/energy_problem.hpp"
-#include "fem/forms/elastic_form.hpp"
 #include "fem/forms/gravity_form.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/materials/material.hpp"
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/newton.hpp"

@@ -1,6 +1,6 @@
 #pragma once
 // The strain-energy form of a solid body, axisymmetric or 3D: every element
-// family is an instance of projected_dilatation_form.hpp.
+// family is an instance of projected_dilatation_form.hpp, made by make_elastic_form.hpp.
 //
 // Near-incompressible laws (those with the isochoric/volumetric split) use a
 // projected-dilatation (three-field, Hu–Washizu) formulation with the
@@ -58,14 +58,5 @@ class ElasticForm : public Form {
   /// Name of the element formulation in use (for reports).
   virtual std::string element_name() const = 0;
 };
-
-/// The elastic form of a mesh, its element chosen by dimension and nodes per element:
-/// axisymmetric Q1/P0 (2D, 4 nodes) or Q2/P1 (2D, 9), Hex8/P0 (3D, 8), Hex20/P1 (3D, 20) or Hex27/P1 (3D, 27).
-/// `part_materials[i]` is the material of mesh part i. Throws std::logic_error for other
-/// meshes, for meshes with inverted elements and for `reduced` integration of anything but Hex20.
-std::shared_ptr<ElasticForm> make_elastic_form(
-    const Mesh& mesh, std::vector<Material> part_materials,
-    VolumetricTreatment treatment = VolumetricTreatment::projected_dilatation,
-    ElementIntegration integration = ElementIntegration::full);
 
 }  // namespace softarm::fem

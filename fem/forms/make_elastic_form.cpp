@@ -1,4 +1,4 @@
-#include "fem/forms/elastic_form.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 
 #include <stdexcept>
 

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "fem/assembly/energy_problem.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/mesh/rra_mesher.hpp"
 #include "fem/post/region_average.hpp"
 

@@ -10,10 +10,11 @@
 #include <Eigen/Geometry>
 
 #include "fem/core/parallel.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/forms/periodic_face_form.hpp"
 #include "fem/forms/plane_face_form.hpp"
-#include "fem/scenes/cell_supports.hpp"
 #include "fem/mesh/tca_mesher.hpp"
+#include "fem/scenes/cell_supports.hpp"
 #include "fem/solver/linear_solver.hpp"
 #include "fem/solver/load_stepper.hpp"
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/forms/plane_face_form.hpp"
 #include "fem/post/face_measures.hpp"
 #include "fem/scenes/cell_supports.hpp"

@@ -8,6 +8,7 @@
 #include "fem/assembly/energy_problem.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
 #include "fem/forms/gravity_form.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/mesh/tca_mesher.hpp"
 #include "fem/post/face_measures.hpp"
 

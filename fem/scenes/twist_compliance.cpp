@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "fem/assembly/energy_problem.hpp"
-#include "fem/forms/elastic_form.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/reduced/spatial_cell_rod.hpp"
 #include "fem/scenes/solid_scene_support.hpp"
 #include "fem/scenes/tca_cell.hpp"
