@@ -3,7 +3,7 @@
 #include <iomanip>
 #include <iostream>
 
-#include "engine/output_files.hpp"
+#include "engine/report/output_files.hpp"
 #include "engine/spl_report.hpp"
 #include "fem/scenes/reduced_scenes.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"

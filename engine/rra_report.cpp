@@ -3,8 +3,8 @@
 #include <filesystem>
 #include <iomanip>
 
-#include "engine/output_files.hpp"
 #include "engine/path_summary.hpp"
+#include "engine/report/output_files.hpp"
 #include "fem/io/vtu_writer.hpp"
 
 namespace softarm::engine {

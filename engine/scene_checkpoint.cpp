@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "engine/output_files.hpp"
+#include "engine/report/output_files.hpp"
 #include "fem/core/checksum.hpp"
 #include "fem/core/input_error.hpp"
 

@@ -3,8 +3,8 @@
 #include <iomanip>
 #include <set>
 
-#include "engine/output_files.hpp"
 #include "engine/path_summary.hpp"
+#include "engine/report/output_files.hpp"
 #include "fem/io/vtu_writer.hpp"
 #include "fem/mesh/tca_mesher.hpp"
 

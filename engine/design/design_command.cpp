@@ -11,10 +11,10 @@
 #include "engine/design/design_problem.hpp"
 #include "engine/design/design_report.hpp"
 #include "engine/design/search_log.hpp"
-#include "engine/output_files.hpp"
+#include "engine/report/output_files.hpp"
+#include "fem/core/json_reader.hpp"
 #include "objectives/cell_rod_evaluation.hpp"
 #include "objectives/fit_range.hpp"
-#include "fem/core/json_reader.hpp"
 
 namespace softarm::engine {
 namespace {

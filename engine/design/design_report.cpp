@@ -5,8 +5,8 @@
 
 #include "engine/design/design_measures.hpp"
 #include "engine/design/design_problem.hpp"
-#include "engine/output_files.hpp"
 #include "engine/report/html_document.hpp"
+#include "engine/report/output_files.hpp"
 #include "engine/report/svg_plot.hpp"
 #include "fem/io/vtu_writer.hpp"
 #include "fem/mesh/tca_mesher.hpp"

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "engine/design/design_problem.hpp"
-#include "engine/output_files.hpp"
+#include "engine/report/output_files.hpp"
 
 namespace softarm::engine {
 namespace {

@@ -1,4 +1,4 @@
-#include "engine/output_files.hpp"
+#include "engine/report/output_files.hpp"
 
 #include <filesystem>
 #include <unistd.h>

@@ -5,7 +5,7 @@
 #include <iostream>
 #include <thread>
 
-#include "engine/output_files.hpp"
+#include "engine/report/output_files.hpp"
 #include "engine/study/study_report.hpp"
 #include "fem/core/input_error.hpp"
 #include "studies/cluster.hpp"
