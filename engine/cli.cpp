@@ -150,6 +150,10 @@ void print_schema(const std::string& scene) {
                                                          {"max", name == "ring_count" ? 40.0 : 0.5}};
     }
     probe["design_space"]["actuator_spacing_mm"] = {{"min", 2.5}, {"max", 6}};
+    // The start design must be complete (the geometry takes one of each physical/normalised pair)
+    // and inside the probe's bounds.
+    probe["baseline_geometry"] = {{"wall_thickness_normalised", 0.466}, {"end_cap_thickness_normalised", 0.4},
+                                  {"ring_count_normalised", 0.375}, {"ring_thickness_normalised", 0.4}};
     read_design_config(probe);
     print_fields("requirements config (softarm design) keys; design_space also takes wall_thickness_mm, "
                  "end_cap_thickness_mm, ring_diameter_mm instead of their normalised twins, and baseline_geometry "

@@ -135,6 +135,23 @@ TEST_CASE("the schema marks the lists a config must give as required, as the rea
   CHECK_THAT(line_of(tca.output, "load.output_pressures_kPa"), Catch::Contains("(optional)"));
 }
 
+TEST_CASE("the schema of every config kind prints, with the keys each reader takes", "[cli]") {
+  // `schema --scene design` once exited 2: its probe document lacked a complete start design.
+  const std::vector<std::pair<std::string, std::vector<std::string>>> kinds = {
+      {"rra", {"geometry.wall_thickness_normalised", "load.max_pressure_kPa"}},
+      {"tca", {"load.chamber_pressures_kPa"}},
+      {"spl", {"load.chamber_pressures_kPa"}},
+      {"design", {"requirements.max_mass_kg", "check.corrections", "check.improvement_rounds",
+                  "check.improvement_tolerance_percent", "optimiser.categorical_keep"}},
+      {"study", {"sweep[0].parameter"}}};
+  for (const auto& [kind, keys] : kinds) {
+    const auto r = run_softarm("schema --scene " + kind);
+    INFO(kind << ":\n" << r.output);
+    REQUIRE(r.exit_code == 0);
+    for (const auto& key : keys) CHECK(r.output.find("\n" + key + "  (") != std::string::npos);
+  }
+}
+
 TEST_CASE("softarm bare prints its help, --version its version, an unknown command the nearest name", "[cli]") {
   const auto bare = run_softarm("");
   CHECK(bare.exit_code == 0);
