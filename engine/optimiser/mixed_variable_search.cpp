@@ -51,11 +51,13 @@ void MixedVariableSearch::run(const std::vector<double>& start) {
     return combo;
   };
 
-  // 1. The first combination, fully.
+  // 1. The first combination, with a share of the budget that leaves as much to each of the
+  //    `categorical_keep` best of the screening (when the screening picks another combination, its
+  //    continuous and integer variables are optimised for it, not left at the first one's optimum).
   const std::vector<int> first = combo_of(start);
   const int count = static_cast<int>(combos.size());
   const int keep = std::min(options_.categorical_keep, count);
-  const int first_budget = std::max(1, (cache_.remaining() - (count - 1)) / keep);
+  const int first_budget = std::max(1, (cache_.remaining() - (count - 1)) / (keep + 1));
   optimise_combination(start, first_budget, space_.categorical_label(start));
   const auto* best_first =
       cache_.best([&](const std::vector<double>& x) { return combo_of(x) == first; });
@@ -85,15 +87,12 @@ void MixedVariableSearch::run(const std::vector<double>& start) {
   std::stable_sort(screened.begin(), screened.end(),
                    [&](const Screened& a, const Screened& b) { return better(a.value, b.value, tol); });
 
-  // 3. The categorical_keep best, fully (the first is not redone).
+  // 3. The categorical_keep best, each from its screened point with an equal share of what is left
+  //    (the first, if kept, continues from its optimum).
   const std::size_t top = std::min<std::size_t>(keep, screened.size());
-  int left = 0;
-  for (std::size_t k = 0; k < top; ++k) left += screened[k].combo != first;
-  for (std::size_t k = 0; k < top && cache_.remaining() > 0; ++k) {
-    if (screened[k].combo == first) continue;
-    optimise_combination(screened[k].x, cache_.remaining() / std::max(1, left--),
+  for (std::size_t k = 0; k < top && cache_.remaining() > 0; ++k)
+    optimise_combination(screened[k].x, cache_.remaining() / static_cast<int>(top - k),
                          space_.categorical_label(screened[k].x));
-  }
 }
 
 void MixedVariableSearch::optimise_combination(const std::vector<double>& start, int budget,

@@ -39,11 +39,13 @@
 //     avoided).
 //
 // Categorical variables: screening. The combinations of choices are enumerated;
-// the first combination (x0's, or every first choice) is fully optimised; every
-// other combination is evaluated once at that optimum's continuous and integer
-// values; the `categorical_keep` best combinations of that screening (feasible
-// first, then objective) are fully optimised (the first is not redone) and the
-// best design overall is returned.
+// the first combination (x0's, or every first choice) is optimised with a
+// 1/(categorical_keep + 1) share of the budget; every other combination is
+// evaluated once at that optimum's continuous and integer values; the
+// `categorical_keep` best combinations of that screening (feasible first, then
+// objective) are optimised with equal shares of the rest, each from its
+// screened point (the first, if kept, continues from its optimum), and the best
+// design overall is returned.
 //
 // Failures: an Evaluation with ok=false (or one that throws std::exception, or
 // returns a non-finite number or the wrong number of constraints) is an
