@@ -61,7 +61,7 @@ void print_constraints(const ConstraintValues& c) {
 // far, plus `after_s` (the verification that follows, at the last one's cost).
 optimise::Result search(const DesignConfig& config, double ref_strain, const SolidCorrection& correction,
                         const DiscrepancyModel& discrepancy, double radius, const std::vector<double>& x0,
-                        DesignCheckpoint& checkpoint, SearchLog& log, double after_s) {
+                        int max_evaluations, DesignCheckpoint& checkpoint, SearchLog& log, double after_s) {
   optimise::Problem problem = design_problem(config, ref_strain, correction, &checkpoint, &discrepancy);
   if (!discrepancy.empty() && radius < 1) {
     problem.variables = trust_region(config, x0, radius);
@@ -69,6 +69,7 @@ optimise::Result search(const DesignConfig& config, double ref_strain, const Sol
               << " % of its range of the last verified design\n";
   }
   optimise::Options options = config.optimiser;
+  options.max_evaluations = max_evaluations;
   options.x0 = x0;
   const auto started = Clock::now();
   options.on_evaluation = [&](const optimise::Progress& p) {
@@ -138,12 +139,6 @@ std::optional<objectives::SolidSegmentCheck> check_in_3d(const DesignConfig& con
   return sc;
 }
 
-bool all_met(const DesignConfig& config, const objectives::ArmMeasures& m, double ref_strain) {
-  for (double g : constraints_of(config, m, ref_strain).values)
-    if (!(g <= 1e-9)) return false;
-  return true;
-}
-
 // The accurate model's verdict on an optimum: every requirement on the cell rod of the whole arm
 // (objectives/cell_rod_evaluation.hpp), or the verification the checkpoint holds from an earlier run.
 std::optional<objectives::CellRodEvaluation> verify_on_cells(const DesignConfig& config, const std::vector<double>& x,
@@ -188,7 +183,7 @@ std::optional<objectives::CellRodEvaluation> verify_on_cells(const DesignConfig&
             << " kg), lifted at " << fixed(m.payload_lift_pressure_kPa, 1) << " kPa; heavier: " << m.payload_note << "\n";
   print_constraints(constraints_of(config, m, ref_strain));
   std::cout << "  " << objectives::check_fit_range(m, make_candidate(config, x).tube).words << "\n";
-  std::cout << "  verdict on the accurate model: " << (all_met(config, m, ref_strain) ? "every requirement met" : "NOT every requirement met") << "\n";
+  std::cout << "  verdict on the accurate model: " << (meets_every_requirement(config, m, ref_strain) ? "every requirement met" : "NOT every requirement met") << "\n";
   return v;
 }
 
@@ -225,6 +220,27 @@ std::vector<double> best_verified(const DesignConfig& config, const DesignRun& r
     if (!best_rank || rank < *best_rank) x = r.optimum_x, best_rank = rank;
   }
   return x;
+}
+
+// Whether an improvement round's search predicts an objective better than the best verified
+// design's by more than check.improvement_tolerance_percent (the search model's objective is the
+// accurate one's where it is the mass; the corrected constraints are consistent at the centre).
+// If not, the round stops without a verification: within the trust region the corrected model
+// knows no better design, the trust-region method's stopping test.
+bool improves_on_best(const DesignConfig& config, DesignRun& run, double ref_strain) {
+  const std::size_t best = best_round(config, run, ref_strain);
+  const objectives::ArmMeasures& centre = run.rounds[best].verification->measures;
+  const double now = objective_of(config, centre, ref_strain), predicted = run.result.best.objective;
+  const double gain = (now - predicted) / std::max(std::abs(now), 1e-12);
+  if (run.result.feasible && gain > config.improvement_tolerance) return true;
+  std::ostringstream why;
+  why << "the improvement round's search predicts " << (run.result.feasible ? "" : "no feasible design, ")
+      << "an objective " << fixed(100 * gain, 2) << " % better than the best verified design's (round " << best
+      << "), within check.improvement_tolerance_percent (" << fixed(100 * config.improvement_tolerance, 2)
+      << " %): no better design within the trust region by the corrected model";
+  run.rounds_stop_reason = why.str();
+  std::cout << run.rounds_stop_reason << "\n";
+  return false;
 }
 
 // A rank other than 0 under mpirun: the same config, silently, and its share of every verification's cells.
@@ -270,6 +286,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     std::cout << "; no verification: the search model's verdict (fast fidelity)";
   if (config.solid_check_segment > 0) std::cout << "; 3D check of segment " << config.solid_check_segment;
   if (config.solid_corrections > 0) std::cout << "; up to " << config.solid_corrections << " correction round(s)";
+  if (config.improvement_rounds > 0) std::cout << " and " << config.improvement_rounds << " improvement round(s)";
   std::cout << "\n";
   if (checkpoint.resumed_evaluations() + checkpoint.resumed_solid_checks() + checkpoint.resumed_verifications() > 0)
     std::cout << "resuming: " << checkpoint.resumed_evaluations() << " evaluations, " << checkpoint.resumed_solid_checks()
@@ -307,18 +324,24 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     discrepancy.add(normalised_design(config, x), constraints_of(config, accurate, ref_strain).values,
                     constraints_of(config, searched, ref_strain).values);
   };
-  if (config.verify_on_cells && config.solid_corrections > 0) {
+  if (config.verify_on_cells && (config.solid_corrections > 0 || config.improvement_rounds > 0)) {
     std::cout << "\nthe start design on the accurate model, to correct the first search by:\n";
     run.thesis_verification = verify_on_cells(config, run.thesis_x, run.thesis, ref_strain, checkpoint, cells, t0);
     if (run.thesis_verification && run.thesis_verification->ok()) learn(run.thesis_x, run.thesis_verification->measures, run.thesis);
   }
   std::optional<objectives::ArmMeasures> rod_check;  // the last optimum at the check fidelity, uncorrected
+  int corrections = 0, improvements = 0;              // rounds of each kind run so far
+  std::string purpose = "first search";
   for (int round = 0;; ++round) {
     if (round > 0) {
-      log.next_round(run.result.evaluations, "correction " + std::to_string(round) + ": ");
-      std::cout << "\ncorrection round " << round << " of at most " << config.solid_corrections
-                << ": search again from the last optimum with the search model corrected by the "
-                << (config.verify_on_cells ? "verified designs" : "3D check") << " ("
+      const bool improving = purpose == "improvement";
+      const int count = improving ? improvements : corrections;
+      log.next_round(run.result.evaluations, purpose + " " + std::to_string(count) + ": ");
+      std::cout << "\n" << purpose << " round " << count << " of at most "
+                << (improving ? config.improvement_rounds : config.solid_corrections) << ": search again "
+                << (improving ? "about the best verified design" : "from the last optimum")
+                << " with the search model corrected by the " << (config.verify_on_cells ? "verified designs" : "3D check")
+                << " ("
                 << (config.verify_on_cells ? discrepancy.describe(constraints_of(config, {}, ref_strain).names)
                                            : correction.describe())
                 << ")\n";
@@ -326,10 +349,17 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     const double verification_s = !config.verify_on_cells ? 0.0
                                   : run.thesis_verification ? run.thesis_verification->measures.seconds
                                   : 240.0;  // a verification's cells on 2 cores, before one has been timed
-    run.result = search(config, ref_strain, correction, discrepancy, radius, x0, checkpoint, log,
+    const int budget = purpose == "improvement" && config.improvement_evaluations > 0
+                           ? std::min(config.improvement_evaluations, config.optimiser.max_evaluations)
+                           : config.optimiser.max_evaluations;
+    run.result = search(config, ref_strain, correction, discrepancy, radius, x0, budget, checkpoint, log,
                         run.rounds.empty() || !run.rounds.back().verification ? verification_s
                                                                                : run.rounds.back().verification->measures.seconds);
     run.optimum_x = run.result.x;
+    if (purpose == "improvement" && !improves_on_best(config, run, ref_strain)) {
+      run.optimum_x = run.rounds.back().optimum_x;  // the answer stays a verified design (chosen below)
+      break;
+    }
     const objectives::ArmMeasures raw = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.model);
     run.optimum = corrected(raw, correction);
     run.optimum_uncorrected = raw;
@@ -339,26 +369,43 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     if (config.solid_check_segment > 0) check = check_in_3d(config, run.optimum_x, *rod_check, checkpoint);
     std::optional<objectives::CellRodEvaluation> verification;
     if (config.verify_on_cells) verification = verify_on_cells(config, run.optimum_x, raw, ref_strain, checkpoint, cells, t0);
-    run.rounds.push_back({correction, run.optimum_x, run.optimum, run.result.feasible, check, verification, raw});
+    run.rounds.push_back({purpose, correction, run.optimum_x, run.optimum, run.result.feasible, check, verification, raw});
     run.answer_round = run.rounds.size() - 1;
     if (config.verify_on_cells) {
       if (!verification || !verification->ok()) {
-        std::cout << "no correction round: the verification could not measure this design\n";
-        break;
-      }
-      if (all_met(config, verification->measures, ref_strain)) {
-        std::cout << "the verification on the cell rod meets every requirement: no correction needed\n";
+        run.rounds_stop_reason = "the verification could not measure the last design";
+        std::cout << "no further round: " << run.rounds_stop_reason << "\n";
         break;
       }
       learn(run.optimum_x, verification->measures, raw);
-      if (round == config.solid_corrections) break;
+      x0 = best_verified(config, run, ref_strain, x0);
+      if (meets_every_requirement(config, verification->measures, ref_strain)) {
+        // Trust-region model management past feasibility: the model is now corrected at this design
+        // too, and the next search looks for a better one about the best verified design.
+        if (improvements == config.improvement_rounds) {
+          run.rounds_stop_reason = config.improvement_rounds == 0
+                                       ? "the verification meets every requirement (check.improvement_rounds is 0)"
+                                       : "the verification meets every requirement; every improvement round has run";
+          std::cout << "the verification on the cell rod meets every requirement: no further round ("
+                    << run.rounds_stop_reason << ")\n";
+          break;
+        }
+        purpose = "improvement";
+        ++improvements;
+        continue;
+      }
+      if (corrections == config.solid_corrections) {
+        run.rounds_stop_reason = "the last verified design misses a requirement; every correction round has run";
+        break;
+      }
       // The next search is corrected by every verified design, within a trust region half as wide
       // (the linear discrepancy was not enough to hold this one), about the best verified design.
       radius *= 0.5;
-      x0 = best_verified(config, run, ref_strain, x0);
+      purpose = "correction";
+      ++corrections;
       continue;
     }
-    if (round == config.solid_corrections || !check) break;
+    if (corrections == config.solid_corrections || !check) break;
     if (check->meets_bending() && check->holds_working_pressure()) {
       std::cout << "the 3D check meets bending and holds the working pressure: no correction needed\n";
       break;
@@ -375,6 +422,8 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     }
     correction = next;
     x0 = run.optimum_x;
+    purpose = "correction";
+    ++corrections;
   }
 
   // The answer is the best verified design (the first that meets every requirement ends the loop; with
@@ -383,7 +432,8 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     run.answer_round = best_round(config, run, ref_strain);
     if (run.answer_round + 1 != run.rounds.size()) {
       const SearchRound& a = run.rounds[run.answer_round];
-      std::cout << "the answer is round " << run.answer_round << "'s design, the least violating verified one\n";
+      std::cout << "the answer is round " << run.answer_round << "'s design, the best verified one (every requirement "
+                   "met first, then the objective; else the least violation)\n";
       run.optimum_x = a.optimum_x;
       run.optimum = a.optimum;
       run.optimum_uncorrected = a.optimum_uncorrected;
@@ -428,15 +478,23 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     std::cout << "check and correct, round by round:\n";
     for (std::size_t k = 0; k < run.rounds.size(); ++k) {
       const auto& r = run.rounds[k];
-      std::cout << "  round " << k << ": correction " << r.correction.describe() << "; mass " << fixed(r.optimum.mass_kg, 3)
-                << " kg" << (r.feasible ? "" : " (infeasible)");
+      std::cout << "  round " << k << " (" << r.purpose << "): ";
+      if (r.verification && r.verification->ok())
+        std::cout << "verified mass " << fixed(r.verification->measures.mass_kg, 3) << " kg, "
+                  << (meets_every_requirement(config, r.verification->measures, ref_strain) ? "every requirement met"
+                                                                            : "NOT every requirement met");
+      else
+        std::cout << "correction " << r.correction.describe() << "; mass " << fixed(r.optimum.mass_kg, 3) << " kg"
+                  << (r.feasible ? "" : " (infeasible)");
       if (r.solid_check)
         std::cout << "; 3D: bending " << (r.solid_check->meets_bending() ? "met" : "NOT met") << ", working pressure "
                   << r.solid_check->working_pressure_verdict() << ", rod error " << fixed(r.solid_check->bending_error_percent(), 1)
                   << " %";
       std::cout << "\n";
     }
+    if (!run.rounds_stop_reason.empty()) std::cout << "  no further round: " << run.rounds_stop_reason << "\n";
   }
+
 
   std::cout << "model errors (fidelity ladder, softarm fidelity):";
   for (const auto& e : model_errors_json(config.check.rra_mesh_level))

@@ -305,6 +305,23 @@ DesignConfig read_design_config(const nlohmann::json& document) {
                                     "(each requirement it measures matched at the verified design) and search again "
                                     "from the last optimum, at most this many times; each round costs a search and a "
                                     "verification");
+    c.improvement_rounds = k.integer("improvement_rounds", 0, Range::closed(0, 5),
+                                     "trust-region model management past feasibility: when a verified design meets "
+                                     "every requirement, correct the search model by it too and search again about "
+                                     "it, at most this many times; a round whose search predicts an objective better "
+                                     "by less than check.improvement_tolerance_percent stops without a verification, "
+                                     "one whose verified design is not better keeps the best; each round costs a "
+                                     "search and a verification (cell_rod verification only)");
+    c.improvement_tolerance = 0.01 * k.number("improvement_tolerance_percent", 0.5, Range::closed(0, 50),
+                                              "an improvement round stops when its search predicts the objective "
+                                              "better than the best verified design's by less than this (% of it)");
+    c.improvement_evaluations = k.integer("improvement_evaluations", 0, Range::closed(0, 100000),
+                                          "real evaluations of an improvement round's search, which starts at a "
+                                          "verified design, at most optimiser.max_evaluations (0: that)");
+    if (c.improvement_rounds > 0 && !c.verify_on_cells)
+      throw fem::InputError(k.field("improvement_rounds"), "= " + std::to_string(c.improvement_rounds) +
+                                                               " needs the verification on the cell rod: set "
+                                                               "check.verification to cell_rod");
     if (c.solid_corrections > 0 && c.solid_check_segment == 0 && !c.verify_on_cells)
       throw fem::InputError(k.field("corrections"), "= " + std::to_string(c.solid_corrections) +
                                                          " needs a check to correct by: set check.verification to "

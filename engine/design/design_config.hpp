@@ -67,6 +67,10 @@ struct DesignConfig {
   bool mesh_sensitivity = true;             // check.mesh_sensitivity: the optimum's peaks one RRA level finer
   int cell_layers_level = 0;                // check.cell_layers_level: the cells' layers along the axis (0: the rung's)
   double trust_radius = 0.25;               // check.trust_radius: the first corrected search's box, fraction of each range
+  int improvement_rounds = 0;               // check.improvement_rounds: searches again about a verified design that
+                                            // meets every requirement, corrected by it (trust-region model management)
+  double improvement_tolerance = 0.005;     // check.improvement_tolerance_percent: a round predicting less stops
+  int improvement_evaluations = 0;          // check.improvement_evaluations: an improvement round's budget (0: optimiser's)
   double search_margin = 0.01;              // constraints on the search model: g + margin ≤ 0
   optimise::Options optimiser;
   std::string output_directory = "out/design";

@@ -73,6 +73,12 @@ ConstraintValues constraints_of(const DesignConfig& config, const objectives::Ar
   return c;
 }
 
+bool meets_every_requirement(const DesignConfig& config, const objectives::ArmMeasures& m, double reference_strain) {
+  for (double g : constraints_of(config, m, reference_strain).values)
+    if (!(g <= 1e-9)) return false;
+  return true;
+}
+
 double objective_of(const DesignConfig& config, const objectives::ArmMeasures& m, double reference_strain) {
   const double v = design_measure(config.objective_measure, "objective").value(m, config.model, reference_strain);
   return config.maximise ? -v : v;

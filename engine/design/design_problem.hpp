@@ -34,6 +34,10 @@ struct ConstraintValues {
 };
 ConstraintValues constraints_of(const DesignConfig& config, const objectives::ArmMeasures& m, double reference_strain);
 /// The value the optimiser minimises (a maximised measure negated).
+/// Whether every constraint of the measures holds (g ≤ 0, to round-off): the verdict of "meets every
+/// requirement", wherever it is given.
+bool meets_every_requirement(const DesignConfig& config, const objectives::ArmMeasures& m, double reference_strain);
+
 double objective_of(const DesignConfig& config, const objectives::ArmMeasures& m, double reference_strain);
 
 /// The constraints with the correction applied (bending and burst; solid_correction.hpp):

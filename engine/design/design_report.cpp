@@ -109,6 +109,7 @@ nlohmann::json verification_summary(const DesignConfig& c, const objectives::Cel
     const auto g = constraints_of(c, v.measures, ref_strain);
     for (std::size_t i = 0; i < g.names.size(); ++i) j["g"][g.names[i]] = g.values[i];
   }
+  j["all_met"] = v.ok() && meets_every_requirement(c, v.measures, ref_strain);
   return j;
 }
 
@@ -188,10 +189,8 @@ nlohmann::json verification_json(const DesignRun& run) {
 }  // namespace
 
 bool verified_all_met(const DesignRun& run) {
-  if (!run.verification() || !run.verification()->ok()) return false;
-  for (double g : constraints_of(*run.config, run.verification()->measures, run.reference_strain).values)
-    if (!(g <= 1e-9)) return false;
-  return true;
+  return run.verification() && run.verification()->ok() &&
+         meets_every_requirement(*run.config, run.verification()->measures, run.reference_strain);
 }
 
 void write_design_outputs(const DesignRun& run) {
@@ -227,7 +226,8 @@ void write_design_outputs(const DesignRun& run) {
   summary["check_and_correct"] = nlohmann::json::array();
   for (const SearchRound& r : run.rounds)
     summary["check_and_correct"].push_back(
-        {{"correction", {{"bending_factor", r.correction.bending_factor},
+        {{"purpose", r.purpose},
+         {"correction", {{"bending_factor", r.correction.bending_factor},
                          {"burst_utilisation_factor", r.correction.burst_factor},
                          {"from_3d_checks", r.correction.checks}}},
          {"verification", r.verification ? verification_summary(c, *r.verification, run.reference_strain) : nlohmann::json()},
@@ -235,6 +235,7 @@ void write_design_outputs(const DesignRun& run) {
          {"feasible_corrected_search_model", r.feasible},
          {"mass_kg", r.optimum.mass_kg},
          {"solid_check", r.solid_check ? solid_check_json(*r.solid_check) : nlohmann::json()}});
+  summary["rounds_stop_reason"] = run.rounds_stop_reason;
   write_json_file(dir, "summary.json", summary);
   write_pose_vtu(dir, run.optimum);
   // The optimum's 3D geometry (Hex8, level 1) with part ids, for ParaView next to the pose.

@@ -26,6 +26,8 @@ struct HistoryPoint {
 
 /// One search of a check-and-correct run and the 3D check of its optimum.
 struct SearchRound {
+  std::string purpose;                // "first search", "correction" (the last verified design missed a
+                                      // requirement) or "improvement" (it met every one: check.improvement_rounds)
   SolidCorrection correction;         // the search model's, during this search
   std::vector<double> optimum_x;
   objectives::ArmMeasures optimum;    // search model, corrected
@@ -45,6 +47,7 @@ struct DesignRun {
   double finer_reference_strain = 0;
   std::vector<SearchRound> rounds;  // the first search, then each correction round (check.corrections)
   std::size_t answer_round = 0;     // the round whose optimum is the answer (the best verified; else the last)
+  std::string rounds_stop_reason;   // why no further round ran (words)
   /// The final optimum's segment by the 3D FEM (check.solid_segment): the last round's check.
   const std::optional<objectives::SolidSegmentCheck>& solid_check() const;
   /// The final optimum on the cell rod (check.verification): the last round's.
