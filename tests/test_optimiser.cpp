@@ -163,6 +163,37 @@ TEST_CASE("optimiser: categorical screening finds the optimum in a non-first cho
   }
 }
 
+TEST_CASE("optimiser: a categorical variable held at one choice is neither screened nor changed", "[optimiser]") {
+  // The problem of the screening test, choice 2 ("high") held: its own optimum x = 0.8, 0.5.
+  const std::vector<double> c{0.2, 0.5, 0.8}, b{1.0, 0.1, 0.5};
+  Problem p;
+  Variable shape;
+  shape.name = "shape";
+  shape.kind = VariableKind::categorical;
+  shape.choices = {"low", "middle", "high"};
+  shape.fixed_choice = 2;
+  p.variables = {continuous("x", 0, 1), shape};
+  p.evaluate = [&](const std::vector<double>& x) {
+    const auto k = static_cast<std::size_t>(x[1]);
+    Evaluation e;
+    e.objective = (x[0] - c.at(k)) * (x[0] - c.at(k)) + b.at(k);
+    return e;
+  };
+  Options o = with("ipopt", 60);
+  o.x0 = {0.5, 2};
+  const Result r = minimise(p, o);
+  REQUIRE(r.feasible);
+  CHECK(r.x[1] == 2);
+  CHECK(r.x[0] == Approx(0.8).margin(0.01));
+  for (const auto& h : r.history) {
+    CHECK(h.x[1] == 2);
+    CHECK(h.phase != "categorical screening");
+  }
+  shape.fixed_choice = 3;  // no such choice
+  p.variables[1] = shape;
+  CHECK_THROWS_WITH(minimise(p, o), Catch::Contains("held at choice 3 of 3"));
+}
+
 TEST_CASE("optimiser: a failing region is avoided without a crash", "[optimiser]") {
   // min (x-2)^2 + (y-0.5)^2 s.t. x <= 0.75; the evaluation fails for x > 0.8
   // (ok=false, an exception, or NaN): optimum (0.75, 0.5).

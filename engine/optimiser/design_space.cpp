@@ -25,6 +25,9 @@ void validate(const Problem& problem, const Options& options) {
   for (const Variable& v : problem.variables) {
     if (v.kind == VariableKind::categorical) {
       if (v.choices.empty()) bad(quoted(v) + " is categorical but has no choices");
+      if (v.fixed_choice >= static_cast<int>(v.choices.size()))
+        bad(quoted(v) + " is held at choice " + std::to_string(v.fixed_choice) + " of " +
+            std::to_string(v.choices.size()));
       continue;
     }
     if (!std::isfinite(v.lower) || !std::isfinite(v.upper) || !(v.lower < v.upper)) {
@@ -105,7 +108,8 @@ std::vector<double> DesignSpace::snapped(std::vector<double> x) const {
         x[i] = std::clamp(std::round(x[i]), v.lower, v.upper);
         break;
       case VariableKind::categorical:
-        x[i] = std::clamp(std::round(x[i]), 0.0, static_cast<double>(v.choices.size() - 1));
+        x[i] = v.fixed_choice >= 0 ? v.fixed_choice
+                                   : std::clamp(std::round(x[i]), 0.0, static_cast<double>(v.choices.size() - 1));
         break;
     }
   }
@@ -139,6 +143,7 @@ std::vector<std::vector<int>> DesignSpace::categorical_combinations() const {
     std::vector<std::vector<int>> next;
     for (const auto& combo : out)
       for (int c = 0; c < static_cast<int>(variables_[cat[j]].choices.size()); ++c) {
+        if (variables_[cat[j]].fixed_choice >= 0 && c != variables_[cat[j]].fixed_choice) continue;
         next.push_back(combo);
         next.back()[j] = c;
       }

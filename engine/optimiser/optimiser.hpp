@@ -74,6 +74,7 @@ struct Variable {
   VariableKind kind = VariableKind::continuous;
   double lower = 0, upper = 1;        ///< continuous and integer (integer: integral bounds)
   std::vector<std::string> choices;   ///< categorical only
+  int fixed_choice = -1;              ///< categorical: ≥ 0 holds the variable at that choice (none screened)
   std::string unit;                   ///< for reports only
 };
 
