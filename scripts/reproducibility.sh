@@ -9,7 +9,8 @@
 # integers and materials, continuous variables within 0.5 % of their range, mass within 0.5 %,
 # the same verdict on the accurate model.
 # Usage: scripts/reproducibility.sh [requirements.json] [output dir] [extra softarm design options...]
-# (SOFTARM_BIN picks the binary, default build/softarm.) Exit 0 when the answers agree, 1 when not.
+# (SOFTARM_BIN picks the binary, default build/softarm; BOTH_AT_ONCE=1 runs A and B side by side,
+# which changes their times, not their answers.) Exit 0 when the answers agree, 1 when not.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 config=${1:-configs/thesis_requirements.json}
@@ -26,10 +27,16 @@ run() {  # name threads coretype [softarm design options...]
     > "$out/$name.log" 2>&1 || true
 }
 extra=("$@")
-run A 1 "${CORE_A:-Haswell}" "${extra[@]}"
 default_b=Sandybridge
 grep -qw avx512f /proc/cpuinfo 2>/dev/null && default_b=SkylakeX
-run B 2 "${CORE_B:-$default_b}" "${extra[@]}"
+if [[ "${BOTH_AT_ONCE:-0}" == 1 ]]; then
+  run A 1 "${CORE_A:-Haswell}" "${extra[@]}" &
+  run B 2 "${CORE_B:-$default_b}" "${extra[@]}" &
+  wait
+else
+  run A 1 "${CORE_A:-Haswell}" "${extra[@]}"
+  run B 2 "${CORE_B:-$default_b}" "${extra[@]}"
+fi
 python3 - "$config" "$out/A/summary.json" "$out/B/summary.json" <<'PY'
 import json, re, sys
 config_file, fa, fb = sys.argv[1:4]
