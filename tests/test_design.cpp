@@ -97,6 +97,12 @@ TEST_CASE("bad requirements name the field", "[design]") {
     doc["check"]["corrections"] = 1;
     CHECK_THAT(error_field(doc), Catch::Contains("check.corrections") && Catch::Contains("check.solid_segment"));
   }
+  SECTION("improvement rounds without the verification") {
+    doc["check"]["verification"] = "none";
+    doc["check"]["corrections"] = 0;
+    doc["check"]["improvement_rounds"] = 1;
+    CHECK_THAT(error_field(doc), Catch::Contains("check.improvement_rounds") && Catch::Contains("cell_rod"));
+  }
   SECTION("too many correction rounds") {
     doc["check"]["corrections"] = 7;
     CHECK_THAT(error_field(doc), Catch::Contains("check.corrections") && Catch::Contains("7"));

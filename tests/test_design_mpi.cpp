@@ -49,6 +49,7 @@ TEST_CASE("two MPI ranks give the serial design, its cells spread over them", "[
   fs::create_directories(dir);
   auto doc = softarm::fem::load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/thesis_requirements.json");
   doc["check"]["corrections"] = 0;
+  doc["check"]["improvement_rounds"] = 0;
   doc["check"]["solid_segment"] = 0;
   doc["check"]["cell_layers_level"] = 1;
   doc["check"]["cell_levels"] = 4;

@@ -43,6 +43,7 @@ TEST_CASE("softarm design resumes from its checkpoint and computes only what is 
   auto doc = softarm::fem::load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/thesis_requirements.json");
   doc["check"]["solid_segment"] = 0;
   doc["check"]["corrections"] = 0;
+  doc["check"]["improvement_rounds"] = 0;
   doc["check"]["verification"] = "none";
   // What is compared does not need the optimum's peaks one RRA level finer, nor a finer re-check.
   doc["check"]["mesh_sensitivity"] = false;

@@ -56,17 +56,21 @@ void print_constraints(const ConstraintValues& c) {
 }
 
 // One search of the search model (corrected by `correction` and the discrepancy model) from x0,
-// within the trust region of half-width `radius` about x0 when the discrepancy model has a centre.
+// within the trust region of half-width `radius` about x0 when the discrepancy model has a centre,
+// the materials held at x0's in an improvement round (`keep_materials`).
 // Every 10 evaluations it prints an ETA: the rest of the budget at the mean cost of an evaluation so
 // far, plus `after_s` (the verification that follows, at the last one's cost).
 optimise::Result search(const DesignConfig& config, double ref_strain, const SolidCorrection& correction,
                         const DiscrepancyModel& discrepancy, double radius, const std::vector<double>& x0,
-                        int max_evaluations, DesignCheckpoint& checkpoint, SearchLog& log, double after_s) {
+                        int max_evaluations, bool keep_materials, DesignCheckpoint& checkpoint, SearchLog& log,
+                        double after_s) {
   optimise::Problem problem = design_problem(config, ref_strain, correction, &checkpoint, &discrepancy);
-  if (!discrepancy.empty() && radius < 1) {
-    problem.variables = trust_region(config, x0, radius);
+  if (!discrepancy.empty() && (radius < 1 || keep_materials)) {
+    problem.variables = trust_region(config, x0, radius, keep_materials);
     std::cout << "search within the trust region: each variable within " << fixed(100 * radius, 1)
-              << " % of its range of the last verified design\n";
+              << " % of its range of the best verified design"
+              << (keep_materials ? ", its materials kept (a trust region is local; the first search screened them)" : "")
+              << "\n";
   }
   optimise::Options options = config.optimiser;
   options.max_evaluations = max_evaluations;
@@ -268,6 +272,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     config.verify_on_cells = false;
     config.solid_check_segment = 0;
     config.solid_corrections = 0;
+    config.improvement_rounds = 0;
   }
   prepare_output_directory(config.output_directory,
                            overrides.output_directory.empty() ? "output.directory" : "-o/--output");
@@ -352,7 +357,8 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     const int budget = purpose == "improvement" && config.improvement_evaluations > 0
                            ? std::min(config.improvement_evaluations, config.optimiser.max_evaluations)
                            : config.optimiser.max_evaluations;
-    run.result = search(config, ref_strain, correction, discrepancy, radius, x0, budget, checkpoint, log,
+    run.result = search(config, ref_strain, correction, discrepancy, radius, x0, budget, purpose == "improvement",
+                        checkpoint, log,
                         run.rounds.empty() || !run.rounds.back().verification ? verification_s
                                                                                : run.rounds.back().verification->measures.seconds);
     run.optimum_x = run.result.x;

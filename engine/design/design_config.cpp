@@ -297,7 +297,7 @@ DesignConfig read_design_config(const nlohmann::json& document) {
                                     "a test), its error not measured on the ladder");
     c.trust_radius = k.number("trust_radius", 0.25, Range::closed(0.01, 1),
                               "the first search corrected by verified designs stays within this fraction of each "
-                              "variable's range of the last verified design (1: the whole range); each further "
+                              "variable's range of the best verified design (1: the whole range); each correction "
                               "round halves it");
     c.solid_corrections = k.integer("corrections", 0, Range::closed(0, 5),
                                     "check and correct: while the verification (or, without one, the 3D check of "
@@ -305,6 +305,10 @@ DesignConfig read_design_config(const nlohmann::json& document) {
                                     "(each requirement it measures matched at the verified design) and search again "
                                     "from the last optimum, at most this many times; each round costs a search and a "
                                     "verification");
+    if (c.solid_corrections > 0 && c.solid_check_segment == 0 && !c.verify_on_cells)
+      throw fem::InputError(k.field("corrections"), "= " + std::to_string(c.solid_corrections) +
+                                                         " needs a check to correct by: set check.verification to "
+                                                         "cell_rod or check.solid_segment to 1, 2 or 3");
     c.improvement_rounds = k.integer("improvement_rounds", 0, Range::closed(0, 5),
                                      "trust-region model management past feasibility: when a verified design meets "
                                      "every requirement, correct the search model by it too and search again about "
@@ -322,10 +326,6 @@ DesignConfig read_design_config(const nlohmann::json& document) {
       throw fem::InputError(k.field("improvement_rounds"), "= " + std::to_string(c.improvement_rounds) +
                                                                " needs the verification on the cell rod: set "
                                                                "check.verification to cell_rod");
-    if (c.solid_corrections > 0 && c.solid_check_segment == 0 && !c.verify_on_cells)
-      throw fem::InputError(k.field("corrections"), "= " + std::to_string(c.solid_corrections) +
-                                                         " needs a check to correct by: set check.verification to "
-                                                         "cell_rod or check.solid_segment to 1, 2 or 3");
     c.check = read_model(k, fine, "check");
     for (auto* s : {&c.model, &c.check}) {
       s->working_pressure_kPa = c.requirements.max_pressure_kPa;

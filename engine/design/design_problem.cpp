@@ -116,11 +116,14 @@ ConstraintValues corrected_constraints_at(const DesignConfig& config, const obje
   return g;
 }
 
-std::vector<optimise::Variable> trust_region(const DesignConfig& config, const std::vector<double>& x, double radius) {
+std::vector<optimise::Variable> trust_region(const DesignConfig& config, const std::vector<double>& x, double radius,
+                                             bool keep_choices) {
   std::vector<optimise::Variable> out;
   for (std::size_t i = 0; i < config.variables.size(); ++i) {
     optimise::Variable v = config.variables[i].variable;
-    if (v.kind != optimise::VariableKind::categorical) {
+    if (v.kind == optimise::VariableKind::categorical) {
+      if (keep_choices) v.fixed_choice = static_cast<int>(std::lround(x[i]));
+    } else {
       const double half = radius * (v.upper - v.lower);
       double lo = std::max(v.lower, x[i] - half), hi = std::min(v.upper, x[i] + half);
       if (v.kind == optimise::VariableKind::integer) {

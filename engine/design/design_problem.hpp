@@ -65,8 +65,10 @@ ConstraintValues corrected_constraints_at(const DesignConfig& config, const obje
 
 /// The variables' bounds narrowed to a box of half-width `radius` (a fraction of each range) about x
 /// (continuous and integer variables; an integer box spans at least its two nearest integers;
-/// categorical choices stay free): the trust region of a corrected search.
-std::vector<optimise::Variable> trust_region(const DesignConfig& config, const std::vector<double>& x, double radius);
+/// categorical choices stay free unless `keep_choices` holds them at x's): the trust region of a
+/// corrected search.
+std::vector<optimise::Variable> trust_region(const DesignConfig& config, const std::vector<double>& x, double radius,
+                                             bool keep_choices = false);
 
 /// "ring_count = 30, taper_ratio = 0.5, ..., tube_material = dragon_skin_30".
 std::string describe(const DesignConfig& config, const std::vector<double>& x);
