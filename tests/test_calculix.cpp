@@ -22,6 +22,7 @@
 
 #include "fem/materials/neo_hookean.hpp"
 #include "fem/scenes/rra_scene.hpp"
+#include "support/external_tool.hpp"
 #include "support/test_problems.hpp"
 
 using namespace softarm;
@@ -49,7 +50,8 @@ double last_axial_displacement(const std::string& dat_file) {
 
 }  // namespace
 
-TEST_CASE("CalculiX agrees with softarm on the thesis RRA extension", "[calculix]") {
+TEST_CASE("CalculiX agrees with softarm on the thesis RRA extension", "[calculix][long]") {
+  if (softarm::test::skip_without_command("ccx", "CalculiX, Debian package calculix-ccx")) return;
   RraSceneSpec spec;  // the thesis RRA (RraDesign defaults)
   spec.tube_material = test::neo_hookean(0.1153, 2.0 / 0.7029);
   spec.tube_material.density_g_cm3 = 1.08;

@@ -41,6 +41,7 @@
 #include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/load_stepper.hpp"
+#include "support/external_tool.hpp"
 #include "support/test_problems.hpp"
 #include "support/text_file.hpp"
 #include "support/tube_meshes.hpp"
@@ -365,6 +366,7 @@ TEST_CASE("Abaqus export of a 3D mesh: element types, chamber faces, symmetry pl
 }
 
 TEST_CASE("CalculiX agrees with softarm on a pressurised plane-strain tube (quarter model)", "[calculix]") {
+  if (softarm::test::skip_without_command("ccx", "CalculiX, Debian package calculix-ccx")) return;
   // Bore displacement u_r at (5, 0, 0). The solution is smooth, and both engines' 3D
   // quadratic elements converge fast on it (softarm's Hex27 matches its axisymmetric
   // Q2 model to 1e-4 of the growth at nc = 32, test_solid3d.cpp). Measured: softarm
@@ -409,6 +411,7 @@ TEST_CASE("CalculiX agrees with softarm on a pressurised plane-strain tube (quar
 }
 
 TEST_CASE("CalculiX agrees with softarm on a silicone column under oblique gravity (half model)", "[calculix]") {
+  if (softarm::test::skip_without_command("ccx", "CalculiX, Debian package calculix-ccx")) return;
   // Top-centre displacement of the column (clamped base, g along (−0.6, 0, −0.8)):
   // mostly bending, u_x ≈ −0.74 mm. The half model y <= 5 mm in both engines, on
   // the same meshes (2n × n × 8n Hex27 / C3D20R). Measured u_x: softarm −0.73741,

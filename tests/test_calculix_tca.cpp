@@ -50,6 +50,7 @@
 #include "fem/scenes/tca_export.hpp"
 #include "fem/scenes/tca_scene.hpp"
 #include "fem/solver/load_stepper.hpp"
+#include "support/external_tool.hpp"
 #include "support/test_problems.hpp"
 
 using namespace softarm;
@@ -156,6 +157,7 @@ TEST_CASE("Abaqus deck of the 3D actuators: clamped top, symmetry plane, pressur
 }
 
 TEST_CASE("CalculiX agrees with softarm on a short 3D RRA (half model)", "[calculix]") {
+  if (softarm::test::skip_without_command("ccx", "CalculiX, Debian package calculix-ccx")) return;
   const Mesh mesh = mesh_rra_3d(short_rra(), {1, 2, true, 0});
   const Material rings = builtin_material("digital_abs", "test");
   // softarm
@@ -192,7 +194,8 @@ TEST_CASE("CalculiX agrees with softarm on a short 3D RRA (half model)", "[calcu
   WARN("RRA free-face u_z: softarm " << us.z() << " mm, ccx " << ccx.mean_u.z() << " mm");
 }
 
-TEST_CASE("CalculiX agrees with softarm on a short 3CA bending under two chambers (half model)", "[calculix]") {
+TEST_CASE("CalculiX agrees with softarm on a short 3CA bending under two chambers (half model)", "[calculix][long]") {
+  if (softarm::test::skip_without_command("ccx", "CalculiX, Debian package calculix-ccx")) return;
   TcaSceneSpec spec;
   spec.design.actuator = short_rra();
   spec.tube_material = spec.sheath_material = silicone();

@@ -103,7 +103,7 @@ void check_json(const Thesis& t) {
 
 // One test case (ctest runs each in its own process, and the cells are the cost): three checks of one verification.
 TEST_CASE("The verification on the cell rod: the distal segment as the 3CA cell rod bends it, the payload's lift, "
-          "the JSON record", "[verification][cell]") {
+          "the JSON record", "[verification][cell][long]") {
   const Thesis& t = thesis_on_cells();
   SECTION("distal segment") { check_distal_segment(t); }
   SECTION("payload") { check_payload(t); }

@@ -260,7 +260,7 @@ TEST_CASE("softarm rejects bad 3CA and SPL input with the field named", "[cli]")
                      "load.chamber_pressures_kPa");
 }
 
-TEST_CASE("simulate on the SPL config's own model: the cell rod, its cells and joints, no NaN", "[cli][cell]") {
+TEST_CASE("simulate on the SPL config's own model: the cell rod, its cells and joints, no NaN", "[cli][cell][long]") {
   // The thesis pose config asks for 5 %: the cell rod. A light load (chamber 9 at 30 kPa) keeps the
   // cells short; the upper segments' cells are unloaded (their rest state).
   std::ifstream in(std::string(SOFTARM_SOURCE_DIR) + "/configs/spl_thesis_pose.json");

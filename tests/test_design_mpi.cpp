@@ -17,6 +17,7 @@
 #include <string>
 
 #include "fem/core/json_reader.hpp"
+#include "support/external_tool.hpp"
 #include "support/text_file.hpp"
 
 namespace fs = std::filesystem;
@@ -41,9 +42,8 @@ json without_times(json j) {
 }
 }  // namespace
 
-TEST_CASE("two MPI ranks give the serial design, its cells spread over them", "[design][mpi]") {
-  if (std::system("command -v mpirun > /dev/null 2>&1") != 0)
-    FAIL("mpirun is not on PATH: run scripts/setup.sh, which installs Open MPI (as CI does)");
+TEST_CASE("two MPI ranks give the serial design, its cells spread over them", "[design][mpi][long]") {
+  if (softarm::test::skip_without_command("mpirun", "Open MPI, Debian package openmpi-bin")) return;
   const fs::path dir = fs::temp_directory_path() / ("softarm_design_mpi_" + std::to_string(getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);

@@ -36,7 +36,7 @@ int run_design(const fs::path& config, const fs::path& out, int budget, const fs
 }
 }  // namespace
 
-TEST_CASE("softarm design resumes from its checkpoint and computes only what is new", "[design][cli][resume]") {
+TEST_CASE("softarm design resumes from its checkpoint and computes only what is new", "[design][cli][resume][long]") {
   const fs::path dir = fs::temp_directory_path() / ("softarm_design_resume_" + std::to_string(getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);

@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 TEST_CASE("an improvement round searches about the verified design and the answer is the best verified one",
-          "[design][cli][rounds]") {
+          "[design][cli][rounds][long]") {
   const fs::path dir = fs::temp_directory_path() / ("softarm_design_rounds_" + std::to_string(getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);

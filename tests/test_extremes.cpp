@@ -332,7 +332,7 @@ void run_arm_corner(const std::string& name, const engine::DesignConfig& config,
 
 // ================================================================= RRA FEM
 
-TEST_CASE("extremes: RRA wall thickness from 0.1 to the largest the geometry allows", "[extremes][rra]") {
+TEST_CASE("extremes: RRA wall thickness from 0.1 to the largest the geometry allows", "[extremes][rra][long]") {
   SECTION("0.1 with the thesis rings: the groove cuts into the chamber, refused naming the ring size") {
     check_invalid("wall 0.1, thesis rings", {{"geometry", {{"wall_thickness_normalised", 0.1}}}},
                   "geometry.ring_thickness_normalised");
@@ -359,7 +359,7 @@ TEST_CASE("extremes: RRA wall thickness from 0.1 to the largest the geometry all
   }
 }
 
-TEST_CASE("extremes: RRA ring count and ring thickness to touching", "[extremes][rra]") {
+TEST_CASE("extremes: RRA ring count and ring thickness to touching", "[extremes][rra][long]") {
   SECTION("ring count 0.1 (8 rings, d_r = 8 mm)") {
     run_rra_case("ring count 0.1", {{"geometry", {{"ring_count_normalised", 0.1}}}});
   }
@@ -376,7 +376,7 @@ TEST_CASE("extremes: RRA ring count and ring thickness to touching", "[extremes]
   }
 }
 
-TEST_CASE("extremes: RRA end caps 0.05 balloon at a limit point, 1.0 holds", "[extremes][rra][limit]") {
+TEST_CASE("extremes: RRA end caps 0.05 balloon at a limit point, 1.0 holds", "[extremes][rra][limit][long]") {
   SECTION("0.05: limit point near 87.8 kPa") {
     const auto r = run_rra_case("end caps 0.05", {{"geometry", {{"end_cap_thickness_normalised", 0.05}}}});
     REQUIRE(r.path.outcome == PathOutcome::limit_point);
@@ -439,15 +439,15 @@ void check_design_bound_corners(const char* material) {
 }  // namespace
 
 TEST_CASE("extremes: corners of the design bounds to 400 kPa, Dragon Skin 10: no stall",
-          "[extremes][rra][grid]") {
+          "[extremes][rra][grid][long]") {
   check_design_bound_corners("dragon_skin_10");
 }
 
-TEST_CASE("extremes: corners of the design bounds to 400 kPa, Dragon Skin 20: no stall", "[extremes][rra][grid]") {
+TEST_CASE("extremes: corners of the design bounds to 400 kPa, Dragon Skin 20: no stall", "[extremes][rra][grid][long]") {
   check_design_bound_corners("dragon_skin_20");
 }
 
-TEST_CASE("extremes: corners of the design bounds to 400 kPa, Dragon Skin 30: no stall", "[extremes][rra][grid]") {
+TEST_CASE("extremes: corners of the design bounds to 400 kPa, Dragon Skin 30: no stall", "[extremes][rra][grid][long]") {
   check_design_bound_corners("dragon_skin_30");
 }
 
@@ -464,7 +464,7 @@ TEST_CASE("extremes: RRA taper ratio 0.25 to 1 (radii of eqs 5-7)", "[extremes][
   }
 }
 
-TEST_CASE("extremes: RRA of Dragon Skin 10 stops by its ballooning pressure with a diagnosis", "[extremes][rra][limit]") {
+TEST_CASE("extremes: RRA of Dragon Skin 10 stops by its ballooning pressure with a diagnosis", "[extremes][rra][limit][long]") {
   // The thesis RRA in the softest silicone balloons: pressure control stops at 50.9 kPa with
   // dp/dV at 9 % of its initial value, and volume control then traces the (very flat) top of
   // p(V) until the pressure has fallen 0.02 % below its maximum: a limit point near 50.9 kPa.
@@ -475,7 +475,7 @@ TEST_CASE("extremes: RRA of Dragon Skin 10 stops by its ballooning pressure with
   CHECK(r.path.estimated_limit_pressure_kPa >= r.path.reached_pressure_kPa * (1 - 1e-9));
 }
 
-TEST_CASE("extremes: near-incompressible silicone (D1 -> 0) converges without locking", "[extremes][rra]") {
+TEST_CASE("extremes: near-incompressible silicone (D1 -> 0) converges without locking", "[extremes][rra][long]") {
   // To 20 kPa. At D1 = 1e-6 (K0/mu0 = 2e7) rounding the positions alone leaves the residual at
   // ~1e-4 of the load's scale early in the ramp, far above the 1e-8 tolerance: Newton accepts it
   // there once its full step is at round-off (fem/solver/newton.hpp, residual_beyond_roundoff). Before
@@ -523,12 +523,12 @@ void run_past_burst(double p_max) {
   CHECK((r.path.outcome == PathOutcome::limit_point || r.path.outcome == PathOutcome::completed));
 }
 
-TEST_CASE("extremes: the thesis RRA to 400 kPa, past burst", "[extremes][rra][limit]") { run_past_burst(400.0); }
-TEST_CASE("extremes: the thesis RRA to 1000 kPa, far past burst", "[extremes][rra][limit]") { run_past_burst(1000.0); }
+TEST_CASE("extremes: the thesis RRA to 400 kPa, past burst", "[extremes][rra][limit][long]") { run_past_burst(400.0); }
+TEST_CASE("extremes: the thesis RRA to 1000 kPa, far past burst", "[extremes][rra][limit][long]") { run_past_burst(1000.0); }
 
 // ================================================================= reduced arm evaluation
 
-TEST_CASE("extremes: reduced arm evaluation at design-space corners, Dragon Skin 10", "[extremes][design]") {
+TEST_CASE("extremes: reduced arm evaluation at design-space corners, Dragon Skin 10", "[extremes][design][long]") {
   const engine::DesignConfig config = widest_design_config();
   using M = std::map<std::string, char>;
   const M all_min = {{"wall_thickness_normalised", 'l'}, {"end_cap_thickness_normalised", 'l'}, {"ring_count", 'l'},

@@ -157,7 +157,7 @@ TEST_CASE("the 3CA ladder's rod error holds on the thesis 3CA", "[fidelity]") {
   CHECK(100 * (*r.target_pressure_kPa / 277.93 - 1) == Approx(6.9).margin(0.3));
 }
 
-TEST_CASE("the 3CA ladder's cell rod error holds on the thesis 3CA", "[fidelity][cell]") {
+TEST_CASE("the 3CA ladder's cell rod error holds on the thesis 3CA", "[fidelity][cell][long]") {
   // The same reference (429 s) at the first output above 10° (60 kPa), mid-curve and the top, where the
   // cell rod with its end cells is furthest from it: 15.775, 47.357 and 97.126 deg; 90 deg at 277.93 kPa.
   // The cells and end cells take ~35 s.

@@ -33,7 +33,7 @@ std::filesystem::path scratch(const std::string& name) {
 }
 }  // namespace
 
-TEST_CASE("A 3D path stopped midway resumes from its log and ends where an uninterrupted run does", "[checkpoint]") {
+TEST_CASE("A 3D path stopped midway resumes from its log and ends where an uninterrupted run does", "[checkpoint][long]") {
   const TcaSceneSpec plain = short_bending_3ca();
   const TcaResult uninterrupted = run_tca_scene(plain);
   REQUIRE(uninterrupted.path.outcome == PathOutcome::completed);

@@ -16,6 +16,7 @@
 #include "engine/report/html_document.hpp"
 #include "engine/report/svg_plot.hpp"
 #include "support/browser_render.hpp"
+#include "support/external_tool.hpp"
 
 using namespace softarm::report;
 using softarm::test::BrowserRender;
@@ -78,6 +79,9 @@ HtmlDocument sample_report() {
 }  // namespace
 
 TEST_CASE("a report's plots are laid out, drawn and under their headings in Chromium", "[report][browser]") {
+    if (softarm::test::skip_without(!softarm::test::find_chromium().empty(), "headless Chromium",
+                                    "Debian package chromium; scripts/setup.sh installs it"))
+        return;
     TempDir dir;
     const fs::path file = dir.path / "report.html";
     sample_report().write(file);
@@ -118,6 +122,9 @@ TEST_CASE("a report's plots are laid out, drawn and under their headings in Chro
 }
 
 TEST_CASE("the browser check catches broken plots and pages", "[report][browser]") {
+    if (softarm::test::skip_without(!softarm::test::find_chromium().empty(), "headless Chromium",
+                                    "Debian package chromium; scripts/setup.sh installs it"))
+        return;
     TempDir dir;
     SECTION("zero-size, off-canvas and blank plots, script errors, a missing image, no doctype") {
         const std::string broken = R"(<html><head><title>broken</title></head><body>

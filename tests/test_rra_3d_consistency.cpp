@@ -97,7 +97,7 @@ Response response_axisymmetric(const RraDesign& d, int level) {
 }
 }  // namespace
 
-TEST_CASE("3D RRA agrees with the axisymmetric RRA (square rings)", "[rra3d]") {
+TEST_CASE("3D RRA agrees with the axisymmetric RRA (square rings)", "[rra3d][long]") {
   for (int rings : {0, 8}) {
     RraDesign d = short_rra();
     d.ring_count = rings;
@@ -116,7 +116,7 @@ TEST_CASE("3D RRA agrees with the axisymmetric RRA (square rings)", "[rra3d]") {
   }
 }
 
-TEST_CASE("3D RRA: Hex20 at 2x2x2 Gauss points is closer to the axisymmetric RRA than at 3x3x3", "[rra3d]") {
+TEST_CASE("3D RRA: Hex20 at 2x2x2 Gauss points is closer to the axisymmetric RRA than at 3x3x3", "[rra3d][long]") {
   for (int rings : {0, 8}) {
     RraDesign d = short_rra();
     d.ring_count = rings;

@@ -73,7 +73,7 @@ TEST_CASE("thesis RRA extends monotonically to 206.8 kPa", "[rra]") {
   CHECK(r.tube_mass_kg < 0.040);
 }
 
-TEST_CASE("a thin neo-Hookean tube balloons: the limit point is detected and reported", "[rra][limit]") {
+TEST_CASE("a thin neo-Hookean tube balloons: the limit point is detected and reported", "[rra][limit][long]") {
   // Same initial moduli as Dragon Skin 30 (μ0 = 0.1153 MPa, D1 = 0.7029/MPa).
   // CalculiX finds a real limit point near 31 kPa for this tube (calculix-notes.md);
   // the closed-end thin-membrane estimate is of the same order.
@@ -86,7 +86,7 @@ TEST_CASE("a thin neo-Hookean tube balloons: the limit point is detected and rep
   CHECK(r.path.reached_pressure_kPa < 40.0);
 }
 
-TEST_CASE("chamber-volume control follows the ballooning tube past its pressure maximum", "[rra][limit]") {
+TEST_CASE("chamber-volume control follows the ballooning tube past its pressure maximum", "[rra][limit][long]") {
   // The tube above: volume control takes over where pressure control stops and traces
   // the p–V curve over its maximum. Independent check: pressure control with a 100×
   // finer smallest increment (and no volume control) creeps up to the maximum from
@@ -135,7 +135,7 @@ TEST_CASE("chamber-volume control follows the ballooning tube past its pressure 
   CHECK(c.path.reached_pressure_kPa == Approx(r.path.estimated_limit_pressure_kPa).epsilon(2e-4));
 }
 
-TEST_CASE("volume control by CG on the augmented tangent finds the maximum its LU finds", "[rra][limit]") {
+TEST_CASE("volume control by CG on the augmented tangent finds the maximum its LU finds", "[rra][limit][long]") {
   // The ballooning tube again, past its maximum both ways: each bordered step factorised (LU
   // where K is indefinite), or solved by CG on K + α∇V∇Vᵀ preconditioned with the starting
   // tangent's Cholesky factor (the 3D scenes' default). The two solve the same equations, so
@@ -157,7 +157,7 @@ TEST_CASE("volume control by CG on the augmented tangent finds the maximum its L
   CHECK(cg.path.cg_iterations > lu.path.cg_iterations);
 }
 
-TEST_CASE("where dp/dV is blind to it, the tangent's lowest mode finds the limit point", "[rra][limit]") {
+TEST_CASE("where dp/dV is blind to it, the tangent's lowest mode finds the limit point", "[rra][limit][long]") {
   // The ballooning tube again, with the dp/dV test switched off (a threshold it never reaches),
   // as for a long 3CA whose few ballooning gaps barely change the loaded volume: pressure control
   // stalls just below the maximum, and the lowest eigenvalue of the tangent, collapsed there

@@ -19,7 +19,7 @@
 
 using namespace softarm;
 
-TEST_CASE("3D check of a design segment bends it as the 3CA scene does and compares the rod at the same pressure", "[solid_check]") {
+TEST_CASE("3D check of a design segment bends it as the 3CA scene does and compares the rod at the same pressure", "[solid_check][long]") {
   const fem::SceneConfig scene = fem::load_scene_config(std::string(SOFTARM_SOURCE_DIR) + "/configs/convergence/tca_32mm.json");
   objectives::ArmCandidate candidate;
   candidate.design.segments[2] = scene.tca.design;

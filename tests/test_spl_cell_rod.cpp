@@ -17,7 +17,7 @@
 using namespace softarm::fem;
 using nlohmann::json;
 
-TEST_CASE("The SPL cell rod bends a lone distal segment as the 3CA cell rod does", "[cell][spl]") {
+TEST_CASE("The SPL cell rod bends a lone distal segment as the 3CA cell rod does", "[cell][spl][long]") {
   SplSceneSpec spl = load_scene_config(std::string(SOFTARM_SOURCE_DIR) + "/configs/spl_thesis_pose.json").spl;
   spl.chamber_pressure_kPa = {0, 0, 0, 0, 0, 0, 0, 59, 59};
   spl.gravity_m_s2.setZero();
@@ -97,7 +97,7 @@ double segment_bend_deg(const std::vector<SplJoint>& joints, int n) {
 }
 }  // namespace
 
-TEST_CASE("End cells bonded to the connectors bend a short SPL as its 3D model does where rigid caps do not", "[cell][spl]") {
+TEST_CASE("End cells bonded to the connectors bend a short SPL as its 3D model does where rigid caps do not", "[cell][spl][long]") {
   // Measured: segments 1 and 2 bend 5.79° and 5.35° in 3D; the cell rod with end cells 5.70° and 5.26°
   // (−1.6 %, −1.7 %), with rigid caps 4.85° and 4.79° (−16 %, −10 %); the tip 0.3 mm off (2.5 % of its
   // 14 mm travel) against 1.7 mm (12.8 %). Segment 3's own bend is not compared: the tip's Kabsch

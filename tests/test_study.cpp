@@ -33,6 +33,7 @@
 #include "studies/study_points.hpp"
 #include "studies/study_spec.hpp"
 #include "support/browser_render.hpp"
+#include "support/external_tool.hpp"
 #include "support/text_file.hpp"
 
 using nlohmann::json;
@@ -229,15 +230,11 @@ pid_t start_softarm(const std::vector<std::string>& args, const fs::path& log) {
   return pid;
 }
 
-bool command_exists(const std::string& name) {
-  return std::system(("command -v " + name + " > /dev/null 2>&1").c_str()) == 0;
-}
-
 const std::string kMpirun = "timeout -k 5 120 mpirun --allow-run-as-root --oversubscribe -np 2 ";
 
 }  // namespace
 
-TEST_CASE("a study killed midway and rerun ends with the results of an uninterrupted run", "[study]") {
+TEST_CASE("a study killed midway and rerun ends with the results of an uninterrupted run", "[study][long]") {
   TempDir tmp;
   const json ring_counts = {0.25, 0.375, 0.5}, tubes = {"dragon_skin_20", "dragon_skin_30"};
   const std::size_t n_points = 6;
@@ -298,16 +295,16 @@ TEST_CASE("a study killed midway and rerun ends with the results of an uninterru
   CHECK(read_text(results) == before);
 }
 
-TEST_CASE("two MPI ranks give the results of a serial run", "[study]") {
+TEST_CASE("two MPI ranks give the results of a serial run", "[study][mpi][long]") {
   // The test process was not started by mpirun: MPI is not initialised, one rank.
   const studies::Cluster& local = studies::Cluster::instance();
   CHECK(local.size() == 1);
   CHECK(local.rank() == 0);
   CHECK(local.root());
-  if (!studies::Cluster::available())
-    FAIL("softarm was built without MPI: install Open MPI (libopenmpi-dev, scripts/setup.sh) and reconfigure");
-  if (!command_exists("mpirun"))
-    FAIL("mpirun is not on PATH: run scripts/setup.sh, which installs Open MPI (as CI does)");
+  if (softarm::test::skip_without(studies::Cluster::available(), "Open MPI in this build",
+                                  "Debian package libopenmpi-dev, then reconfigure; scripts/setup.sh installs it") ||
+      softarm::test::skip_without_command("mpirun", "Open MPI, Debian package openmpi-bin"))
+    return;
 
   TempDir tmp;
   const std::size_t n_points = 4;
@@ -351,7 +348,10 @@ TEST_CASE("two MPI ranks give the results of a serial run", "[study]") {
   CHECK(read_results(serial_root / "mpi" / "results.jsonl").records.size() == n_points);
 }
 
-TEST_CASE("study reports show their plots and deformed shapes in a real browser", "[study]") {
+TEST_CASE("study reports show their plots and deformed shapes in a real browser", "[study][browser][long]") {
+  if (softarm::test::skip_without(!softarm::test::find_chromium().empty(), "headless Chromium",
+                                  "Debian package chromium; scripts/setup.sh installs it"))
+    return;
   TempDir tmp;
   const fs::path configs = tmp.path / "configs", root = tmp.path / "out";
   fs::create_directories(configs);

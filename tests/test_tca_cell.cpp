@@ -129,7 +129,7 @@ TEST_CASE("A cell's torsional stiffness: under the polar moment of a silicone ce
 }
 
 TEST_CASE("Gravity across the bend takes the 3CA's cell rod through the spatial rod, consistently with the planar one",
-          "[cell]") {
+          "[cell][long]") {
   TcaSceneSpec spec = thesis_cell_spec();
   use_cell_rod_rung(spec);
   spec.chamber_pressure_kPa = {0, 60, 60};  // bends towards +x
@@ -171,7 +171,7 @@ TEST_CASE("Gravity across the bend takes the 3CA's cell rod through the spatial 
 }
 
 TEST_CASE("A ring-pitch cell bends as the inside of a long 3CA does, at the 3D mesh's layers through the gap",
-          "[cell]") {
+          "[cell][long]") {
   // The inside of a long 3CA, free of its ends: the bend that six more ring pitches add (12 against
   // 6 rings), per pitch. A cell cut at mid-gap has level L's layers in each half gap, so 2L through a
   // gap, as the 3D mesh at level 2L has, and L through the ring, as at level L: its bend lies between

@@ -22,7 +22,7 @@ namespace {
 TcaSceneSpec short_3ca() { return softarm::test::untapered_3ca(7, 2, 3); }
 }  // namespace
 
-TEST_CASE("End cells bend a short 3CA as its 3D model does, closer with each ring, where rigid caps do not", "[cell]") {
+TEST_CASE("End cells bend a short 3CA as its 3D model does, closer with each ring, where rigid caps do not", "[cell][long]") {
   // Measured: 3D 2.713°, 5.728°, 8.768° at 50, 100, 150 kPa; end cells through three rings +1.4 to
   // +1.5 %, through two +3.7 to +3.8 %, rigid caps +20 %: the ends' disturbance decays by about half
   // per ring pitch beyond the cut.
@@ -67,7 +67,7 @@ TEST_CASE("An end cell: unloaded it stays at rest, and too many rings for the 3C
   CHECK(rod.end_cells_note.find("7 rings") != std::string::npos);
 }
 
-TEST_CASE("A bonded end cell turns as its mirror image does and its full model as its half", "[cell]") {
+TEST_CASE("A bonded end cell turns as its mirror image does and its full model as its half", "[cell][long]") {
   // The short 3CA is untapered with its rings centred in their pitches: its bottom end is its top
   // end mirrored through the mid-height plane. Bonded to a rigid body (an SPL segment's ends on
   // their connectors), the bottom end must deform as the top one at the clamp: the mirror flips

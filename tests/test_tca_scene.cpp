@@ -20,7 +20,7 @@ TcaSceneSpec short_tca_scene(bool allow_symmetry) {
 }
 }  // namespace
 
-TEST_CASE("3CA: the half model reproduces the full model", "[tca_scene]") {
+TEST_CASE("3CA: the half model reproduces the full model", "[tca_scene][long]") {
   const auto half = run_tca_scene(short_tca_scene(true));
   const auto full = run_tca_scene(short_tca_scene(false));
   REQUIRE(half.model.half);
@@ -56,7 +56,7 @@ TEST_CASE("3CA model choice follows the loads", "[tca_scene]") {
   CHECK(!choose_tca_model(s).half);
 }
 
-TEST_CASE("3CA bending angle and tip position agree with the pressure ordering", "[tca_scene]") {
+TEST_CASE("3CA bending angle and tip position agree with the pressure ordering", "[tca_scene][long]") {
   const auto r = run_tca_scene(short_tca_scene(true));
   REQUIRE(r.states.size() >= 3);
   // More pressure, more bending; the rest state sags under gravity against the bend.
@@ -70,7 +70,7 @@ TEST_CASE("3CA bending angle and tip position agree with the pressure ordering",
   CHECK(*p < r.curve[1].pressure_kPa);
 }
 
-TEST_CASE("SPL: a symmetric pose on the half model matches the full model, and a tip mass lowers the tip", "[spl_scene]") {
+TEST_CASE("SPL: a symmetric pose on the half model matches the full model, and a tip mass lowers the tip", "[spl_scene][long]") {
   SplSceneSpec s;
   for (auto& segment : s.design.segments) {
     RraDesign& a = segment.actuator;
@@ -113,7 +113,7 @@ TEST_CASE("SPL: a symmetric pose on the half model matches the full model, and a
   CHECK(loaded.mass_kg == Approx(full.mass_kg));  // the payload is not part of the arm
 }
 
-TEST_CASE("3CA: two runs take the same path (factor reuse's CG budget counts flops, not seconds)", "[tca_scene]") {
+TEST_CASE("3CA: two runs take the same path (factor reuse's CG budget counts flops, not seconds)", "[tca_scene][long]") {
   // With the budget timed as it ran, the load on the machine decided which Newton steps
   // factorised, and the thesis 3CA's path differed run to run (17-24 load steps).
   const auto a = run_tca_scene(short_tca_scene(true));
@@ -130,7 +130,7 @@ TEST_CASE("3CA: two runs take the same path (factor reuse's CG budget counts flo
 }
 
 TEST_CASE("3CA: rotating the rings exactly under Newton's update gives the same curve",
-          "[tca_scene]") {
+          "[tca_scene][long]") {
   // x + δx stretches a rotating ABS ring by |ω|²/2; at E = 2 GPa that dwarfs the silicone's
   // forces, and the line search cuts the step (fem/assembly/stiff_inclusions.hpp).
   TcaSceneSpec spec = short_tca_scene(true);

@@ -31,7 +31,7 @@ TEST_CASE("A tube held at one end and turned at the other twists as Saint-Venant
   }
 }
 
-TEST_CASE("Bonded end cells twist a short 3CA as its 3D model does, where the cells' GJ alone does not", "[twist]") {
+TEST_CASE("Bonded end cells twist a short 3CA as its 3D model does, where the cells' GJ alone does not", "[twist][long]") {
   // Seven ring pitches of the thesis 3CA's distal section (untapered, r = 9 mm, caps 2.25 mm),
   // bonded at both ends: the top held, the bottom on a rigid connector turned about the axis.
   // The cells' GJ is Saint-Venant's (sections warping freely); the bonded faces cannot warp and
