@@ -131,21 +131,31 @@ TEST_CASE("optimiser: the neighbour search avoids an infeasible rounded-nearest 
   }
 }
 
-TEST_CASE("optimiser: categorical screening finds the optimum in a non-first choice", "[optimiser]") {
-  // min (x - c_k)^2 + b_k: choice 1 ("middle") at x = 0.5 gives 0.1, the best.
-  const std::vector<double> c{0.2, 0.5, 0.8}, b{1.0, 0.1, 0.5};
+// min (x - c_k)^2 + b_k over x in [0, 1] and a categorical shape k in {low, middle, high}
+// (c = 0.2, 0.5, 0.8; b = 1.0, 0.1, 0.5): choice 1 ("middle") at x = 0.5 gives 0.1, the best;
+// `fixed_choice` holds the shape (-1: free).
+namespace {
+Problem three_shapes(int fixed_choice) {
+  static const std::vector<double> c{0.2, 0.5, 0.8}, b{1.0, 0.1, 0.5};
   Problem p;
   Variable shape;
   shape.name = "shape";
   shape.kind = VariableKind::categorical;
   shape.choices = {"low", "middle", "high"};
+  shape.fixed_choice = fixed_choice;
   p.variables = {continuous("x", 0, 1), shape};
-  p.evaluate = [&](const std::vector<double>& x) {
+  p.evaluate = [](const std::vector<double>& x) {
     const auto k = static_cast<std::size_t>(x[1]);
     Evaluation e;
     e.objective = (x[0] - c.at(k)) * (x[0] - c.at(k)) + b.at(k);
     return e;
   };
+  return p;
+}
+}  // namespace
+
+TEST_CASE("optimiser: categorical screening finds the optimum in a non-first choice", "[optimiser]") {
+  const Problem p = three_shapes(-1);
   for (const std::string name : {"nlopt:cobyla", "nlopt:ccsaq", "ipopt"}) {
     INFO(name);
     Options o = with(name, 200);
@@ -164,21 +174,8 @@ TEST_CASE("optimiser: categorical screening finds the optimum in a non-first cho
 }
 
 TEST_CASE("optimiser: a categorical variable held at one choice is neither screened nor changed", "[optimiser]") {
-  // The problem of the screening test, choice 2 ("high") held: its own optimum x = 0.8, 0.5.
-  const std::vector<double> c{0.2, 0.5, 0.8}, b{1.0, 0.1, 0.5};
-  Problem p;
-  Variable shape;
-  shape.name = "shape";
-  shape.kind = VariableKind::categorical;
-  shape.choices = {"low", "middle", "high"};
-  shape.fixed_choice = 2;
-  p.variables = {continuous("x", 0, 1), shape};
-  p.evaluate = [&](const std::vector<double>& x) {
-    const auto k = static_cast<std::size_t>(x[1]);
-    Evaluation e;
-    e.objective = (x[0] - c.at(k)) * (x[0] - c.at(k)) + b.at(k);
-    return e;
-  };
+  // Choice 2 ("high") held: its own optimum x = 0.8, 0.5.
+  Problem p = three_shapes(2);
   Options o = with("ipopt", 60);
   o.x0 = {0.5, 2};
   const Result r = minimise(p, o);
@@ -189,8 +186,7 @@ TEST_CASE("optimiser: a categorical variable held at one choice is neither scree
     CHECK(h.x[1] == 2);
     CHECK(h.phase != "categorical screening");
   }
-  shape.fixed_choice = 3;  // no such choice
-  p.variables[1] = shape;
+  p.variables[1].fixed_choice = 3;  // no such choice
   CHECK_THROWS_WITH(minimise(p, o), Catch::Contains("held at choice 3 of 3"));
 }
 
