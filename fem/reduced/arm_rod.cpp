@@ -1,6 +1,7 @@
 #include "fem/reduced/arm_rod.hpp"
 
 #include "fem/reduced/rod_continuation.hpp"
+#include "fem/reduced/shooting_root.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -134,36 +135,25 @@ RodState ArmRod::solve(const RodLoad& load, const RodState* start) const {
     st.converged = false;
     st.diagnosis.clear();
   }
-  double f0 = shoot(m0, load, st, failure);
-  if (!std::isfinite(f0)) {
-    st.diagnosis = "section failure: " + failure;
+  // The tip moment as a function of the clamp moment; its root (shooting_root.hpp, which
+  // explains why a bracket is kept) leaves its shape in st.
+  std::string last_failure;
+  const auto tip_moment = [&](double m) {
+    const double f = shoot(m, load, st, failure);
+    if (!std::isfinite(f)) last_failure = failure;
+    return f;
+  };
+  ShootingSettings settings;
+  settings.scale = scale;
+  const ShootingRoot root = shooting_root(tip_moment, m0, settings);
+  st.newton_iterations = root.evaluations;
+  if (root.converged) {
+    st.converged = true;
     return st;
   }
-  double m1 = m0 + 1e-4 * scale, f1 = shoot(m1, load, st, failure);
-  for (int it = 0; it < 80; ++it) {
-    st.newton_iterations = it + 1;
-    // A trial moment that breaks a section (a fibre outside its table, a section past its
-    // limit point) is an overshoot: back off towards the last good one.
-    for (int k = 0; k < 40 && !std::isfinite(f1); ++k) {
-      m1 = 0.5 * (m0 + m1);
-      f1 = shoot(m1, load, st, failure);
-    }
-    if (!std::isfinite(f1)) {
-      st.diagnosis = "section failure: " + failure;
-      return st;
-    }
-    if (std::abs(f1) < 1e-10 * scale) {
-      st.converged = true;
-      return st;
-    }
-    if (f1 == f0) break;
-    double m2 = m1 - f1 * (m1 - m0) / (f1 - f0);
-    const double limit = 0.5 * scale;  // no jump larger than half the moment scale per iteration
-    m2 = std::clamp(m2, m1 - limit, m1 + limit);
-    m0 = m1, f0 = f1, m1 = m2;
-    f1 = shoot(m1, load, st, failure);
-  }
-  st.diagnosis = "no equilibrium found near the previous state (the tip moment does not vanish): limit point";
+  st.diagnosis = std::isfinite(root.f) || last_failure.empty()
+                     ? "no equilibrium found near the previous state (the tip moment does not vanish): limit point"
+                     : "section failure: " + last_failure;
   return st;
 }
 

@@ -13,7 +13,8 @@
 // moment is unknown. Integrating from the clamp (each section's equilibrium
 // gives its stretch and curvature, the shape follows, the moment changes by
 // m' = −r' × F), the moment at the free tip must vanish: a scalar equation in
-// the clamp moment, solved by the secant method. Loads are followed by continuation with
+// the clamp moment, solved by the secant method safeguarded by a bracket
+// (shooting_root.hpp). Loads are followed by continuation with
 // step halving; a step that cannot be completed is a limit point (the arm
 // cannot hold the load) or a section failure, reported with its reason.
 #include <array>
@@ -43,7 +44,7 @@ struct RodState {
   std::vector<double> moment;                     // bending moment per node, N·mm
   bool converged = false;
   std::string diagnosis;
-  int newton_iterations = 0;                      // shooting (secant) iterations
+  int newton_iterations = 0;                      // shooting evaluations (shooting_root.hpp)
 };
 
 class ArmRod {
