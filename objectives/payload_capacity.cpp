@@ -82,6 +82,12 @@ class PayloadSearch {
       double p2 = a1 == a0 ? p1 + 0.01 * p_max : p1 + (target - a1) * (p1 - p0) / (a1 - a0);
       p2 = std::clamp(p2, std::max(0.0, p1 - 0.05 * p_max), std::min(p_max, p1 + 0.05 * p_max));
       fem::RodState st2 = solve(m, p2, st1);
+      // A correction the rod cannot reach from st1 is shortened before it is called a fold: a fold
+      // is where even a step of 1e-4 p_w finds no equilibrium, not where the secant's step did.
+      for (int halving = 0; halving < 8 && !st2.converged && std::abs(p2 - p1) > 1e-4 * p_max; ++halving) {
+        p2 = 0.5 * (p1 + p2);
+        st2 = solve(m, p2, st1);
+      }
       p0 = p1, a0 = a1, st0 = std::move(st1);
       p1 = p2, st1 = std::move(st2);
     }
