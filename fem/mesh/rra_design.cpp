@@ -90,15 +90,14 @@ void validate_design(const RraDesign& d, const FieldNames& f) {
                                       show(wall_normal) + " mm (normal to the taper), or the groove cuts into the chamber");
 }
 
-/// Reads one parameter given either physically (mm) or normalised (× scale);
-/// exactly one of the two keys must be present. Records which one in `field`.
-double physical_or_normalised(JsonReader& g, const std::string& physical_key, const std::string& normalised_key,
-                              double scale, const std::string& what, const std::string& normalised_as,
-                              std::string& field) {
+/// Reads one parameter given either physically (mm) or normalised; exactly one of the two keys must
+/// be present.
+GivenSize physical_or_normalised(JsonReader& g, const std::string& physical_key, const std::string& normalised_key,
+                                 const std::string& what, const std::string& normalised_as) {
   const auto physical = g.optional_number(physical_key, Range::positive(), what + " (mm)");
   const auto normalised = g.optional_number(normalised_key, Range::positive(), what + ", normalised " + normalised_as);
-  field = g.field(g.exactly_one_of({physical_key, normalised_key}));
-  return physical ? *physical : *normalised * scale;
+  g.exactly_one_of({physical_key, normalised_key});
+  return physical ? GivenSize{*physical, false} : GivenSize{*normalised, true};
 }
 
 // A resource bound, not a physical one: every ring's groove is resolved by the mesh, so the element
@@ -106,64 +105,96 @@ double physical_or_normalised(JsonReader& g, const std::string& physical_key, co
 // printable ring, and mesh in seconds. (10⁶ rings were accepted and grew to gigabytes without output.)
 constexpr int kMaxRingCount = 500;
 
-int read_ring_count(JsonReader& g, double length, double reference_diameter, std::string& field) {
-  const auto count = g.optional_integer("ring_count", Range::closed(0, kMaxRingCount),
-                                        "number of rings n_r (0 = plain tube; at most 500: every groove is meshed)");
-  const auto normalised = g.optional_number("ring_count_normalised", Range::non_negative(),
-                                            "ring count, normalised: n_r = round(l·r̂ / ring_reference_diameter_mm), eq 8");
-  field = g.field(g.exactly_one_of({"ring_count", "ring_count_normalised"}));
-  if (count) return *count;
-  const double n = std::round(length * *normalised / reference_diameter);
-  if (n > kMaxRingCount)
-    throw InputError(field, "value " + show(*normalised) + " gives " + show(n) + " rings; valid: at most " +
-                                std::to_string(kMaxRingCount) + " rings (normalised <= " +
-                                show(kMaxRingCount * reference_diameter / length) + " here: every groove is meshed)");
-  return static_cast<int>(n);
-}
+std::string key(const std::string& path, const std::string& name) { return path.empty() ? name : path + "." + name; }
 
-double read_ring_diameter(JsonReader& g, int ring_count, double length, std::string& field) {
-  const auto diameter = g.optional_number("ring_diameter_mm", Range::positive(), "ring section diameter d_r (mm)");
-  const auto normalised = g.optional_number("ring_thickness_normalised", Range::positive(),
-                                            "ring section diameter, normalised d_r / (l / n_r) (1 = rings touch)");
-  if (ring_count == 0 && !diameter && !normalised) return 0.0;  // a plain tube needs no ring size
-  field = g.field(g.exactly_one_of({"ring_diameter_mm", "ring_thickness_normalised"}));
-  if (diameter) return *diameter;
-  return ring_count > 0 ? *normalised * length / ring_count : 0.0;
+/// n_r from the count as given (eq 8 when normalised), within the resource bound.
+int ring_count_of(const RraParameters& p) {
+  if (!p.ring_count.normalised) return static_cast<int>(p.ring_count.value);
+  const double n = std::round(p.length_mm * p.ring_count.value / p.ring_reference_diameter_mm);
+  if (n > kMaxRingCount)
+    throw InputError(key(p.path, "ring_count_normalised"),
+                     "value " + show(p.ring_count.value) + " gives " + show(n) + " rings; valid: at most " +
+                         std::to_string(kMaxRingCount) + " rings (normalised <= " +
+                         show(kMaxRingCount * p.ring_reference_diameter_mm / p.length_mm) +
+                         " here: every groove is meshed)");
+  return static_cast<int>(n);
 }
 
 }  // namespace
 
-RraDesign read_rra_design(JsonReader& g) {
-  RraDesign d;
-  FieldNames f;
-  d.length_mm = g.number("length_mm", 160, Range::positive(), "axial length of the tube, caps included (mm)");
-  f.length = g.field("length_mm");
-  d.bottom_radius_mm = g.number("bottom_radius_mm", 9, Range::positive(), "outer radius at the bottom (distal) end, z = 0 (mm)");
-  f.bottom_radius = g.field("bottom_radius_mm");
-  d.top_radius_mm = g.number("top_radius_mm", 12, Range::positive(), "outer radius at the top (proximal) end, z = l (mm)");
-  f.top_radius = g.field("top_radius_mm");
-  const double r_b = d.bottom_radius_mm;
-  d.wall_thickness_mm = physical_or_normalised(g, "wall_thickness_mm", "wall_thickness_normalised", r_b,
-                                               "radial wall thickness t_w", "t_w / r_b", f.wall);
-  d.end_cap_thickness_mm = physical_or_normalised(g, "end_cap_thickness_mm", "end_cap_thickness_normalised", r_b,
-                                                  "axial end-cap thickness t_c", "t_c / r_b", f.cap);
-  d.ring_reference_diameter_mm = g.number("ring_reference_diameter_mm", 2, Range::positive(),
-                                          "reference ring diameter d_ref of eq 8 (mm)");
-  d.ring_count = read_ring_count(g, d.length_mm, d.ring_reference_diameter_mm, f.ring_count);
-  d.ring_diameter_mm = read_ring_diameter(g, d.ring_count, d.length_mm, f.ring_size);
-  d.fixed_end = g.choice("fixed_end", "top", {"top", "bottom"}, "which end is clamped") == "top"
-                    ? RraDesign::FixedEnd::top
-                    : RraDesign::FixedEnd::bottom;
-  d.ring_section = g.choice("ring_section", "circle", {"circle", "square"},
+RraParameters read_rra_parameters(JsonReader& g, bool radii_and_end) {
+  RraParameters p;
+  p.path = g.path();
+  p.length_mm = g.number("length_mm", 160, Range::positive(), "axial length of the tube, caps included (mm)");
+  if (radii_and_end) {
+    p.bottom_radius_mm =
+        g.number("bottom_radius_mm", 9, Range::positive(), "outer radius at the bottom (distal) end, z = 0 (mm)");
+    p.top_radius_mm = g.number("top_radius_mm", 12, Range::positive(), "outer radius at the top (proximal) end, z = l (mm)");
+  }
+  p.wall = physical_or_normalised(g, "wall_thickness_mm", "wall_thickness_normalised", "radial wall thickness t_w",
+                                  "t_w / r_b");
+  p.end_cap = physical_or_normalised(g, "end_cap_thickness_mm", "end_cap_thickness_normalised",
+                                     "axial end-cap thickness t_c", "t_c / r_b");
+  p.ring_reference_diameter_mm =
+      g.number("ring_reference_diameter_mm", 2, Range::positive(), "reference ring diameter d_ref of eq 8 (mm)");
+  const auto count = g.optional_integer("ring_count", Range::closed(0, kMaxRingCount),
+                                        "number of rings n_r (0 = plain tube; at most 500: every groove is meshed)");
+  const auto count_normalised = g.optional_number("ring_count_normalised", Range::non_negative(),
+                                                  "ring count, normalised: n_r = round(l·r̂ / ring_reference_diameter_mm), eq 8");
+  g.exactly_one_of({"ring_count", "ring_count_normalised"});
+  p.ring_count = count ? GivenSize{static_cast<double>(*count), false} : GivenSize{*count_normalised, true};
+  const auto diameter = g.optional_number("ring_diameter_mm", Range::positive(), "ring section diameter d_r (mm)");
+  const auto size_normalised = g.optional_number("ring_thickness_normalised", Range::positive(),
+                                                 "ring section diameter, normalised d_r / (l / n_r) (1 = rings touch)");
+  if (ring_count_of(p) > 0 || diameter || size_normalised) {  // a plain tube needs no ring size
+    g.exactly_one_of({"ring_diameter_mm", "ring_thickness_normalised"});
+    p.ring_size = diameter ? GivenSize{*diameter, false} : GivenSize{*size_normalised, true};
+  }
+  if (radii_and_end)
+    p.fixed_end = g.choice("fixed_end", "top", {"top", "bottom"}, "which end is clamped") == "top"
+                      ? RraDesign::FixedEnd::top
+                      : RraDesign::FixedEnd::bottom;
+  p.ring_section = g.choice("ring_section", "circle", {"circle", "square"},
                             "ring cross-section: \"circle\" (diameter d_r, semicircular groove) or \"square\" "
                             "(the same area, side d_r·√π/2, centred on the outer surface, half sunk in a rectangular groove)") ==
                            "square"
                        ? RraDesign::RingSection::square
                        : RraDesign::RingSection::circle;
-  f.ring_section = g.field("ring_section");
-  g.finish();
+  return p;
+}
+
+RraDesign build_rra_design(const RraParameters& p) {
+  RraDesign d;
+  FieldNames f;
+  f.length = key(p.path, "length_mm");
+  f.bottom_radius = key(p.path, "bottom_radius_mm");
+  f.top_radius = key(p.path, "top_radius_mm");
+  f.wall = key(p.path, p.wall.normalised ? "wall_thickness_normalised" : "wall_thickness_mm");
+  f.cap = key(p.path, p.end_cap.normalised ? "end_cap_thickness_normalised" : "end_cap_thickness_mm");
+  f.ring_count = key(p.path, p.ring_count.normalised ? "ring_count_normalised" : "ring_count");
+  f.ring_size = key(p.path, p.ring_size && p.ring_size->normalised ? "ring_thickness_normalised" : "ring_diameter_mm");
+  f.ring_section = key(p.path, "ring_section");
+  d.length_mm = p.length_mm;
+  d.bottom_radius_mm = p.bottom_radius_mm;
+  d.top_radius_mm = p.top_radius_mm;
+  const double r_b = d.bottom_radius_mm;
+  d.wall_thickness_mm = p.wall.normalised ? p.wall.value * r_b : p.wall.value;
+  d.end_cap_thickness_mm = p.end_cap.normalised ? p.end_cap.value * r_b : p.end_cap.value;
+  d.ring_reference_diameter_mm = p.ring_reference_diameter_mm;
+  d.ring_count = ring_count_of(p);
+  if (!p.ring_size) d.ring_diameter_mm = 0.0;
+  else if (!p.ring_size->normalised) d.ring_diameter_mm = p.ring_size->value;
+  else d.ring_diameter_mm = d.ring_count > 0 ? p.ring_size->value * d.length_mm / d.ring_count : 0.0;
+  d.fixed_end = p.fixed_end;
+  d.ring_section = p.ring_section;
   validate_design(d, f);
   return d;
+}
+
+RraDesign read_rra_design(JsonReader& g) {
+  const RraParameters p = read_rra_parameters(g);
+  g.finish();
+  return build_rra_design(p);
 }
 
 void validate(const RraDesign& design) { validate_design(design, FieldNames{}); }

@@ -14,6 +14,8 @@
 //   faces follow the taper), half sunk into grooves of depth a/2.
 #include <algorithm>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
 
 #include "fem/core/json_reader.hpp"
 
@@ -46,6 +48,35 @@ struct RraDesign {
   /// Smaller of the two end radii: the wall must be thinner than this.
   double smallest_outer_radius() const { return std::min(bottom_radius_mm, top_radius_mm); }
 };
+
+/// A size as the user gave it: in mm, or normalised (× r_b for walls and caps, × the ring pitch for
+/// a ring's diameter; a ring count normalised as r̂ with n_r = round(l·r̂ / d_ref), eq 8).
+struct GivenSize {
+  double value = 0;
+  bool normalised = false;
+};
+
+/// The RRA's "geometry" keys as given, before the normalised sizes are resolved: the typed form in
+/// which a design travels from a config or an optimiser's variables to the mesher. Parsed (keys,
+/// types, ranges) by read_rra_parameters; resolved and validated once by build_rra_design. `path` is
+/// the object the keys came from, so that errors name the key as the user wrote it.
+struct RraParameters {
+  double length_mm = 0, bottom_radius_mm = 0, top_radius_mm = 0;
+  GivenSize wall, end_cap, ring_count;
+  std::optional<GivenSize> ring_size;  // absent only without rings
+  double ring_reference_diameter_mm = 0;
+  RraDesign::FixedEnd fixed_end = RraDesign::FixedEnd::top;
+  RraDesign::RingSection ring_section = RraDesign::RingSection::circle;
+  std::string path = "geometry";
+};
+
+/// Parses the RRA keys of a "geometry" object (read_rra_design lists them) without finishing the
+/// reader. `radii_and_end` false leaves out bottom_radius_mm, top_radius_mm and fixed_end (an SPL's
+/// segments take their radii from the taper and hang from the top).
+RraParameters read_rra_parameters(JsonReader& geometry, bool radii_and_end = true);
+/// The design the parameters describe: normalised sizes resolved, validated (errors name the keys
+/// as given, under parameters.path).
+RraDesign build_rra_design(const RraParameters& parameters);
 
 /// Reads the "geometry" object (and rejects unknown keys in it, so read any
 /// extra keys of that object before calling this). Each sized parameter may be

@@ -1,5 +1,7 @@
 #include "fem/mesh/spl_design.hpp"
 
+#include <cmath>
+#include <stdexcept>
 #include <string>
 
 namespace softarm::fem {
@@ -24,32 +26,53 @@ std::array<double, 2> SplDesign::connector_extent(int c) const {
 
 double SplDesign::total_length_mm() const { return connector_extent(0)[1]; }
 
-SplDesign read_spl_design(JsonReader& g) {
-  SplDesign d;
-  d.taper_ratio = g.number("taper_ratio", 0.5, Range{0, 1, true, false},  // 1: no taper, every radius (r_b)_3
+SplParameters read_spl_parameters(JsonReader& g) {
+  SplParameters p;
+  p.taper_ratio = g.number("taper_ratio", 0.5, Range{0, 1, true, false},  // 1: no taper, every radius (r_b)_3
                            "t_r = (r_b)_3 / (r_t)_1, bottom radius of segment 3 over top radius of segment 1 (eq 6)");
-  d.distal_bottom_radius_mm = g.number("distal_bottom_radius_mm", 9, Range::positive(),
+  p.distal_bottom_radius_mm = g.number("distal_bottom_radius_mm", 9, Range::positive(),
                                        "(r_b)_3, bottom radius of the distal segment's RRAs (mm)");
-  d.connector_thickness_mm = g.number("connector_thickness_mm", 40, Range::positive(),
+  p.connector_thickness_mm = g.number("connector_thickness_mm", 40, Range::positive(),
                                       "axial thickness of each of the three ABS connectors (mm)");
-  d.connector_mass_g = g.optional_number("connector_mass_g", Range::positive(),
+  p.connector_mass_g = g.optional_number("connector_mass_g", Range::positive(),
                                          "mass of each connector (g); absent: from the ABS density");
-  // The 3CA and RRA keys, read once, then applied to every segment with its own radii.
-  nlohmann::json common = nlohmann::json::object();
-  for (const auto& key : {"actuator_spacing_mm", "sheath_thickness_mm", "centre_hole_diameter_mm", "length_mm",
-                          "wall_thickness_mm", "wall_thickness_normalised", "end_cap_thickness_mm",
-                          "end_cap_thickness_normalised", "ring_count", "ring_count_normalised",
-                          "ring_reference_diameter_mm", "ring_diameter_mm", "ring_thickness_normalised", "ring_section"})
-    if (g.has(key)) common[key] = g.raw(key);
+  // The 3CA and RRA keys, read once for every segment; each segment's radii come from the taper.
+  p.segment = read_tca_parameters(g, false);
+  return p;
+}
+
+SplDesign build_spl_design(const SplParameters& p) {
+  SplDesign d;
+  d.taper_ratio = p.taper_ratio;
+  d.distal_bottom_radius_mm = p.distal_bottom_radius_mm;
+  d.connector_thickness_mm = p.connector_thickness_mm;
+  d.connector_mass_g = p.connector_mass_g;
   for (int n = 1; n <= 3; ++n) {
     const auto radii = spl_segment_radii(d.taper_ratio, d.distal_bottom_radius_mm, n);
-    nlohmann::json segment = common;
-    segment["top_radius_mm"] = radii[0];
-    segment["bottom_radius_mm"] = radii[1];
-    JsonReader reader(segment, g.path());
-    d.segments[n - 1] = read_tca_design(reader);
+    TcaParameters segment = p.segment;
+    segment.actuator.top_radius_mm = radii[0];
+    segment.actuator.bottom_radius_mm = radii[1];
+    d.segments[n - 1] = build_tca_design(segment);
   }
   return d;
+}
+
+SplDesign read_spl_design(JsonReader& g) { return build_spl_design(read_spl_parameters(g)); }
+
+void SplParameters::set(const std::string& key, double value) {
+  RraParameters& a = segment.actuator;
+  if (key == "taper_ratio") taper_ratio = value;
+  else if (key == "actuator_spacing_mm") segment.actuator_spacing_mm = value;
+  else if (key == "length_mm") a.length_mm = value;
+  else if (key == "wall_thickness_mm" || key == "wall_thickness_normalised")
+    a.wall = {value, key == "wall_thickness_normalised"};
+  else if (key == "end_cap_thickness_mm" || key == "end_cap_thickness_normalised")
+    a.end_cap = {value, key == "end_cap_thickness_normalised"};
+  else if (key == "ring_count") a.ring_count = {std::round(value), false};
+  else if (key == "ring_count_normalised") a.ring_count = {value, true};
+  else if (key == "ring_diameter_mm" || key == "ring_thickness_normalised")
+    a.ring_size = GivenSize{value, key == "ring_thickness_normalised"};
+  else throw std::invalid_argument("SplParameters::set: no geometry key '" + key + "'");
 }
 
 nlohmann::json to_json(const SplDesign& d) {

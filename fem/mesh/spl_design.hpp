@@ -16,6 +16,7 @@
 #include <array>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 
 #include "fem/core/json_reader.hpp"
 #include "fem/mesh/tca_design.hpp"
@@ -37,6 +38,27 @@ struct SplDesign {
 
 /// Top and bottom outer radius of segment n = 1..3 from eqs 5–7.
 std::array<double, 2> spl_segment_radii(double taper_ratio, double distal_bottom_radius_mm, int n);
+
+/// The SPL's "geometry" keys as given: the arm's own and the 3CA keys every segment shares (their
+/// RRAs' radii come from the taper, eqs 5–7; normalised sizes are relative to each segment's bottom
+/// radius). The typed form in which a design travels: a search sets its variables here (set) and
+/// build_spl_design resolves and validates it once per candidate.
+struct SplParameters {
+  double taper_ratio = 0, distal_bottom_radius_mm = 0, connector_thickness_mm = 0;
+  std::optional<double> connector_mass_g;
+  TcaParameters segment;
+
+  /// Sets a geometry key to `value`, in that key's unit, replacing its twin in the other unit:
+  /// taper_ratio, actuator_spacing_mm, wall_thickness_mm | _normalised, end_cap_thickness_mm |
+  /// _normalised, ring_count (rounded) | ring_count_normalised, ring_diameter_mm |
+  /// ring_thickness_normalised, length_mm. Throws std::invalid_argument for another key.
+  void set(const std::string& key, double value);
+};
+
+/// Parses the SPL keys (read_spl_design lists them) without finishing the reader.
+SplParameters read_spl_parameters(JsonReader& geometry);
+/// The arm the parameters describe, every segment validated (errors name the keys as given).
+SplDesign build_spl_design(const SplParameters& parameters);
 
 /// Reads the "geometry" object of an SPL scene: taper_ratio, distal_bottom_radius_mm,
 /// connector_thickness_mm, connector_mass_g (optional), the 3CA keys actuator_spacing_mm,

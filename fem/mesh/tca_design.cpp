@@ -38,17 +38,32 @@ void validate_design(const TcaDesign& d, const std::string& field_prefix) {
 
 double square_ring_side_mm(const RraDesign& design) { return design.ring_diameter_mm * std::sqrt(M_PI) / 2; }
 
-TcaDesign read_tca_design(JsonReader& g) {
-  TcaDesign d;
-  d.actuator_spacing_mm = g.number("actuator_spacing_mm", 3, Range::positive(),
+TcaParameters read_tca_parameters(JsonReader& g, bool radii_and_end) {
+  TcaParameters p;
+  p.actuator_spacing_mm = g.number("actuator_spacing_mm", 3, Range::positive(),
                                    "3CA: gap between the outer surfaces of neighbouring RRAs (mm)");
-  d.sheath_thickness_mm = g.number("sheath_thickness_mm", 2, Range::positive(),
+  p.sheath_thickness_mm = g.number("sheath_thickness_mm", 2, Range::positive(),
                                    "3CA: offset of the outer surface from the RRAs' convex envelope (mm)");
-  d.centre_hole_diameter_mm = g.number("centre_hole_diameter_mm", 0, Range::non_negative(),
+  p.centre_hole_diameter_mm = g.number("centre_hole_diameter_mm", 0, Range::non_negative(),
                                        "3CA: diameter of the bore along the 3CA axis (mm; 0: none)");
-  d.actuator = read_rra_design(g);
-  validate_design(d, g.path().empty() ? "" : g.path() + ".");
+  p.actuator = read_rra_parameters(g, radii_and_end);
+  return p;
+}
+
+TcaDesign build_tca_design(const TcaParameters& p) {
+  TcaDesign d;
+  d.actuator_spacing_mm = p.actuator_spacing_mm;
+  d.sheath_thickness_mm = p.sheath_thickness_mm;
+  d.centre_hole_diameter_mm = p.centre_hole_diameter_mm;
+  d.actuator = build_rra_design(p.actuator);
+  validate_design(d, p.actuator.path.empty() ? "" : p.actuator.path + ".");
   return d;
+}
+
+TcaDesign read_tca_design(JsonReader& g) {
+  const TcaParameters p = read_tca_parameters(g);
+  g.finish();
+  return build_tca_design(p);
 }
 
 void validate(const TcaDesign& design) { validate_design(design, "geometry."); }

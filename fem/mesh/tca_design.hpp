@@ -35,6 +35,16 @@ struct TcaDesign {
 /// Side of the square ring section with the area of the circular one, a = d_r·√π/2.
 double square_ring_side_mm(const RraDesign& design);
 
+/// The 3CA's "geometry" keys as given (rra_design.hpp's RraParameters for its RRAs).
+struct TcaParameters {
+  RraParameters actuator;
+  double actuator_spacing_mm = 0, sheath_thickness_mm = 0, centre_hole_diameter_mm = 0;
+};
+/// Parses the 3CA keys without finishing the reader (`radii_and_end`: read_rra_parameters).
+TcaParameters read_tca_parameters(JsonReader& geometry, bool radii_and_end = true);
+/// The design the parameters describe, validated (errors name the keys as given).
+TcaDesign build_tca_design(const TcaParameters& parameters);
+
 /// Reads the "geometry" object of a 3CA scene: actuator_spacing_mm,
 /// sheath_thickness_mm, centre_hole_diameter_mm and every RRA key
 /// (read_rra_design). Validated; errors name the field.
