@@ -116,6 +116,7 @@ static void check_constraints_consistent(const DesignConfig& c) {
 DesignConfig read_design_config(const nlohmann::json& document) {
   DesignConfig c;
   fem::JsonReader root(document, "");
+  nlohmann::json baseline_json;  // read for the variables' starts; parsed once into c.baseline_geometry
   {
     auto r = root.object("requirements", "what the arm must achieve (spec §3)");
     Requirements& q = c.requirements;
@@ -182,9 +183,8 @@ DesignConfig read_design_config(const nlohmann::json& document) {
   {
     auto g = root.object("baseline_geometry",
                          "SPL geometry keys (softarm schema --scene spl) held fixed, and the start of the optimised ones");
-    c.baseline_geometry = document.contains("baseline_geometry") ? document["baseline_geometry"] : nlohmann::json::object();
-    // Validated by building the baseline design (engine/design/design_problem.cpp); keys are checked there.
-    (void)g;
+    (void)g;  // its keys are the SPL scene's, read below
+    baseline_json = document.contains("baseline_geometry") ? document["baseline_geometry"] : nlohmann::json::object();
   }
   {
     auto m = root.object("materials", "baseline materials");
@@ -228,8 +228,8 @@ DesignConfig read_design_config(const nlohmann::json& document) {
           throw fem::InputError(field, "integer variable: min and max must be whole numbers");
         // The search starts from the baseline: the value baseline_geometry gives this variable (in the
         // same unit), which must lie within its bounds, else the thesis value brought within them.
-        const auto given = c.baseline_geometry.find(info.name);
-        if (given != c.baseline_geometry.end() && given->is_number()) {
+        const auto given = baseline_json.find(info.name);
+        if (given != baseline_json.end() && given->is_number()) {
           const double b = given->get<double>();
           if (!(b >= d.variable.lower && b <= d.variable.upper))
             throw fem::InputError(std::string("baseline_geometry.") + info.name,
@@ -365,13 +365,18 @@ DesignConfig read_design_config(const nlohmann::json& document) {
     o.finish();
   }
   {
-    // The baseline as given is an arm that can be built (its keys and ranges are the SPL scene's,
-    // checked here before any work rather than where the search first builds it).
-    nlohmann::json g = c.baseline_geometry;
-    g["length_mm"] = (c.requirements.length_m * 1000 - 3 * g.value("connector_thickness_mm", 40.0)) / 3;
+    // Parsed once, here: the keys and ranges are the SPL scene's. The segment length follows from the
+    // arm's length and the connectors (spec §1: 3·l + 3 connectors), whatever the geometry says. The
+    // baseline must be an arm that can be built: checked before any work rather than where the search
+    // first builds it.
+    nlohmann::json g = baseline_json;
+    g["length_mm"] = 1.0;  // a placeholder within range, set below
     fem::JsonReader reader(g, "baseline_geometry");
-    fem::read_spl_design(reader);
+    c.baseline_geometry = fem::read_spl_parameters(reader);
     reader.finish();
+    c.baseline_geometry.set("length_mm",
+                            (c.requirements.length_m * 1000 - 3 * c.baseline_geometry.connector_thickness_mm) / 3);
+    fem::build_spl_design(c.baseline_geometry);
   }
   root.finish();
   return c;

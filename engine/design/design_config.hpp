@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/optimiser/optimiser.hpp"
+#include "fem/mesh/spl_design.hpp"
 #include "objectives/solid_segment_check.hpp"
 #include "objectives/arm_evaluation.hpp"
 
@@ -51,7 +52,8 @@ struct DesignConfig {
   bool maximise = false;
   std::vector<MeasureBound> extra_constraints;
   std::vector<DesignVariable> variables;    // in a fixed order (design_variable_names())
-  nlohmann::json baseline_geometry;         // the SPL geometry keys not optimised (and the baselines)
+  fem::SplParameters baseline_geometry;     // the SPL geometry as given (segment length from the arm's): the
+                                            // keys not optimised, and the variables' starts
   std::string baseline_tube = "dragon_skin_30", baseline_sheath = "dragon_skin_30";
   objectives::EvaluationSettings model;     // search fidelity
   objectives::EvaluationSettings check;     // the final design's re-check (higher fidelity)

@@ -2,13 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <optional>
 #include <sstream>
 
 #include "engine/design/design_measures.hpp"
 #include "fem/core/input_error.hpp"
-#include "fem/core/json_reader.hpp"
 
 namespace softarm::engine {
 
@@ -19,32 +17,16 @@ std::vector<double> baseline_values(const DesignConfig& config) {
 }
 
 objectives::ArmCandidate make_candidate(const DesignConfig& config, const std::vector<double>& x) {
-  nlohmann::json g = config.baseline_geometry;
+  fem::SplParameters geometry = config.baseline_geometry;
   std::string tube = config.baseline_tube, sheath = config.baseline_sheath;
   for (std::size_t i = 0; i < config.variables.size(); ++i) {
     const auto& v = config.variables[i].variable;
     if (v.name == "tube_material") tube = v.choices.at(static_cast<std::size_t>(std::lround(x[i])));
     else if (v.name == "sheath_material") sheath = v.choices.at(static_cast<std::size_t>(std::lround(x[i])));
-    else if (v.name == "ring_count") {
-      g.erase("ring_count_normalised");
-      g["ring_count"] = static_cast<int>(std::lround(x[i]));
-    } else {
-      // A variable replaces its twin in the other unit (the geometry takes exactly one of them).
-      static const std::map<std::string, std::string> twin = {
-          {"wall_thickness_normalised", "wall_thickness_mm"}, {"wall_thickness_mm", "wall_thickness_normalised"},
-          {"end_cap_thickness_normalised", "end_cap_thickness_mm"}, {"end_cap_thickness_mm", "end_cap_thickness_normalised"},
-          {"ring_thickness_normalised", "ring_diameter_mm"}, {"ring_diameter_mm", "ring_thickness_normalised"}};
-      if (const auto t = twin.find(v.name); t != twin.end()) g.erase(t->second);
-      g[v.name] = x[i];
-    }
+    else geometry.set(v.name, x[i]);  // in the variable's unit, replacing its twin in the other
   }
-  // The segment length follows from the arm length and the connectors (spec §1: 3·l + 3 connectors).
-  const double connector = g.value("connector_thickness_mm", 40.0);
-  g["length_mm"] = (config.requirements.length_m * 1000 - 3 * connector) / 3;
   objectives::ArmCandidate c;
-  fem::JsonReader reader(g, "baseline_geometry");
-  c.design = fem::read_spl_design(reader);
-  reader.finish();
+  c.design = fem::build_spl_design(geometry);
   c.tube = fem::builtin_material(tube, "materials.tube");
   c.sheath = fem::builtin_material(sheath, "materials.sheath");
   c.rings = fem::builtin_material("digital_abs", "materials.rings");
