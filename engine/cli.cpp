@@ -8,6 +8,7 @@
 
 #include "engine/design/design_command.hpp"
 #include "fem/core/number_text.hpp"
+#include "fem/core/thesis_values.hpp"
 #include "engine/design/design_config.hpp"
 #include "engine/design/design_measures.hpp"
 #include "engine/optimiser/optimiser.hpp"
@@ -169,7 +170,7 @@ void print_schema(const std::string& scene) {
         {"study", "probe"},
         {"scene", {{"scene", "rra"}, {"geometry", {{"wall_thickness_normalised", 0.466}, {"end_cap_thickness_normalised", 0.25},
                                                    {"ring_count_normalised", 0.375}, {"ring_thickness_normalised", 0.4}}},
-                   {"load", {{"max_pressure_kPa", 206.8}}}}},
+                   {"load", {{"max_pressure_kPa", fem::thesis::kRraTestPressure_kPa}}}}},
         {"sweep", {{{"parameter", "geometry.wall_thickness_normalised"}, {"values", {0.4}}}}},
         {"rule", {{"output", "extension_mm"}}}};
     studies::read_study(probe);
@@ -187,8 +188,8 @@ void print_schema(const std::string& scene) {
   const nlohmann::json rra_sizes = {{"wall_thickness_normalised", 0.466}, {"end_cap_thickness_normalised", 0.25},
                                     {"ring_count_normalised", 0.375}, {"ring_thickness_normalised", 0.4}};
   nlohmann::json probe = {{"scene", scene}, {"geometry", rra_sizes}};
-  if (scene == "rra") probe["load"] = {{"max_pressure_kPa", 206.8}};
-  if (scene == "tca") probe["load"] = {{"chamber_pressures_kPa", {0, 344.7, 344.7}}};
+  if (scene == "rra") probe["load"] = {{"max_pressure_kPa", fem::thesis::kRraTestPressure_kPa}};
+  if (scene == "tca") probe["load"] = {{"chamber_pressures_kPa", {0.0, fem::thesis::kWorkingPressure_kPa, fem::thesis::kWorkingPressure_kPa}}};
   if (scene == "spl") probe["load"] = {{"chamber_pressures_kPa", {0, 345, 345, 0, 86, 345, 0, 0, 59}}};
   fem::read_scene_config(probe);
   print_fields("scene \"" + scene + "\" config keys");

@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "fem/core/thesis_values.hpp"
 #include "fem/mesh/spl_design.hpp"
 #include "fem/reduced/arm_rod.hpp"
 #include "fem/scenes/rra_calibration.hpp"
@@ -38,11 +39,11 @@ struct ArmCandidate {
 };
 
 struct EvaluationSettings {
-  double working_pressure_kPa = 344.7;  // supply pressure: the chambers' maximum
+  double working_pressure_kPa = fem::thesis::kWorkingPressure_kPa;  // supply pressure: the chambers' maximum
   double target_bending_deg = 90;       // per segment
   double lift_angle_deg = 90;           // payload: tip tangent from vertical
   double lift_reach_fraction = 0.25;    // payload: held out at least this share of the arm's length
-  double rra_extension_pressure_kPa = 206.8;  // the lone RRA's extension is reported at this pressure (thesis test)
+  double rra_extension_pressure_kPa = fem::thesis::kRraTestPressure_kPa;  // the lone RRA's extension is reported here
   double safety_factor = 1.5;           // burst criteria (a), (b)
   double peak_averaging_radius_mm = fem::kDefaultPeakAveragingRadius_mm;  // the peaks (a), (b) and durability read
   int rra_mesh_level = 1;               // axisymmetric FEM of each segment's RRA

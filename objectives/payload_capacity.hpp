@@ -22,12 +22,13 @@
 #include <string>
 #include <vector>
 
+#include "fem/core/thesis_values.hpp"
 #include "fem/reduced/arm_rod.hpp"
 
 namespace softarm::objectives {
 
 struct PayloadSettings {
-  double working_pressure_kPa = 344.7;
+  double working_pressure_kPa = fem::thesis::kWorkingPressure_kPa;
   double lift_angle_deg = 90;
   double reach_fraction = 0.25;
   double sheath_allowable_stretch = 1e300;  // (1 + elongation at break) / SF of the sheath

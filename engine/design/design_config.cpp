@@ -127,11 +127,11 @@ DesignConfig read_design_config(const nlohmann::json& document) {
                                 "definitions; spec §4)");
     q.bending_per_segment_deg = r.number("bending_per_segment_deg", 90, Range::open(0, 360),
                                          "bending angle each segment must reach at the working pressure (deg)");
-    q.max_pressure_kPa = r.number("max_pressure_kPa", 344.7, Range::open(0, 2000),
+    q.max_pressure_kPa = r.number("max_pressure_kPa", fem::thesis::kWorkingPressure_kPa, Range::open(0, 2000),
                                   "supply (working) pressure of every chamber (kPa)");
     q.durability_cycles = r.number("durability_cycles", 1e6, Range::positive(), "required RRA life (cycles)");
     q.durability_reference_pressure_kPa =
-        r.number("durability_reference_pressure_kPa", 206.8, Range::positive(),
+        r.number("durability_reference_pressure_kPa", fem::thesis::kRraTestPressure_kPa, Range::positive(),
                  "pressure of the measured fatigue point: the thesis RRA cycled 0 <-> this (kPa)");
     q.durability_reference_cycles = r.number("durability_reference_cycles", 1.1e6, Range::positive(),
                                              "cycles the thesis RRA lasted at that pressure");

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "fem/core/thesis_values.hpp"
 #include "engine/optimiser/optimiser.hpp"
 #include "fem/mesh/spl_design.hpp"
 #include "objectives/solid_segment_check.hpp"
@@ -20,8 +21,8 @@ struct Requirements {
   double length_m = 0.6;
   double min_payload_kg = 0.5;
   double bending_per_segment_deg = 90;
-  double max_pressure_kPa = 344.7;          // supply: every chamber's working pressure
-  double durability_reference_pressure_kPa = 206.8;  // the thesis RRA's cycling test (1.1 M cycles)
+  double max_pressure_kPa = fem::thesis::kWorkingPressure_kPa;  // supply: every chamber's working pressure
+  double durability_reference_pressure_kPa = fem::thesis::kRraTestPressure_kPa;  // the thesis RRA's cycling test
   double durability_reference_cycles = 1.1e6;
   double durability_cycles = 1e6;           // required; met when ε ≤ ε_ref (the only measured point)
   /// Optional strain–life curve through the measured point, N = N_ref·(ε_ref/ε)^b (Basquin form
