@@ -226,25 +226,23 @@ std::vector<double> best_verified(const DesignConfig& config, const DesignRun& r
   return x;
 }
 
-// Whether an improvement round's search predicts an objective better than the best verified
-// design's by more than check.improvement_tolerance_percent (the search model's objective is the
-// accurate one's where it is the mass; the corrected constraints are consistent at the centre).
-// If not, the round stops without a verification: within the trust region the corrected model
-// knows no better design, the trust-region method's stopping test.
-bool improves_on_best(const DesignConfig& config, DesignRun& run, double ref_strain) {
+// Why an improvement round stops here, if it does: its search predicts an objective no better than
+// the best verified design's by more than check.improvement_tolerance_percent (the search model's
+// objective is the accurate one's where it is the mass; the corrected constraints are consistent at
+// the centre). Then the round stops without a verification: within the trust region the corrected
+// model knows no better design, the trust-region method's stopping test.
+std::optional<std::string> improvement_stop(const DesignConfig& config, const DesignRun& run, double ref_strain) {
   const std::size_t best = best_round(config, run, ref_strain);
   const objectives::ArmMeasures& centre = run.rounds[best].verification->measures;
   const double now = objective_of(config, centre, ref_strain), predicted = run.result.best.objective;
   const double gain = (now - predicted) / std::max(std::abs(now), 1e-12);
-  if (run.result.feasible && gain > config.improvement_tolerance) return true;
+  if (run.result.feasible && gain > config.improvement_tolerance) return std::nullopt;
   std::ostringstream why;
   why << "the improvement round's search predicts " << (run.result.feasible ? "" : "no feasible design, ")
       << "an objective " << fixed(100 * gain, 2) << " % better than the best verified design's (round " << best
       << "), within check.improvement_tolerance_percent (" << fixed(100 * config.improvement_tolerance, 2)
       << " %): no better design within the trust region by the corrected model";
-  run.rounds_stop_reason = why.str();
-  std::cout << run.rounds_stop_reason << "\n";
-  return false;
+  return why.str();
 }
 
 // A rank other than 0 under mpirun: the same config, silently, and its share of every verification's cells.
@@ -336,13 +334,13 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
   }
   std::optional<objectives::ArmMeasures> rod_check;  // the last optimum at the check fidelity, uncorrected
   int corrections = 0, improvements = 0;              // rounds of each kind run so far
-  std::string purpose = "first search";
+  RoundPurpose purpose = RoundPurpose::first_search;
   for (int round = 0;; ++round) {
     if (round > 0) {
-      const bool improving = purpose == "improvement";
+      const bool improving = purpose == RoundPurpose::improvement;
       const int count = improving ? improvements : corrections;
-      log.next_round(run.result.evaluations, purpose + " " + std::to_string(count) + ": ");
-      std::cout << "\n" << purpose << " round " << count << " of at most "
+      log.next_round(run.result.evaluations, purpose_name(purpose) + (" " + std::to_string(count) + ": "));
+      std::cout << "\n" << purpose_name(purpose) << " round " << count << " of at most "
                 << (improving ? config.improvement_rounds : config.solid_corrections) << ": search again "
                 << (improving ? "about the best verified design" : "from the last optimum")
                 << " with the search model corrected by the " << (config.verify_on_cells ? "verified designs" : "3D check")
@@ -354,17 +352,21 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     const double verification_s = !config.verify_on_cells ? 0.0
                                   : run.thesis_verification ? run.thesis_verification->measures.seconds
                                   : 240.0;  // a verification's cells on 2 cores, before one has been timed
-    const int budget = purpose == "improvement" && config.improvement_evaluations > 0
+    const int budget = purpose == RoundPurpose::improvement && config.improvement_evaluations > 0
                            ? std::min(config.improvement_evaluations, config.optimiser.max_evaluations)
                            : config.optimiser.max_evaluations;
-    run.result = search(config, ref_strain, correction, discrepancy, radius, x0, budget, purpose == "improvement",
+    run.result = search(config, ref_strain, correction, discrepancy, radius, x0, budget, purpose == RoundPurpose::improvement,
                         checkpoint, log,
                         run.rounds.empty() || !run.rounds.back().verification ? verification_s
                                                                                : run.rounds.back().verification->measures.seconds);
     run.optimum_x = run.result.x;
-    if (purpose == "improvement" && !improves_on_best(config, run, ref_strain)) {
-      run.optimum_x = run.rounds.back().optimum_x;  // the answer stays a verified design (chosen below)
-      break;
+    if (purpose == RoundPurpose::improvement) {
+      if (const auto stop = improvement_stop(config, run, ref_strain)) {
+        run.rounds_stop_reason = *stop;
+        std::cout << run.rounds_stop_reason << "\n";
+        run.optimum_x = run.rounds.back().optimum_x;  // the answer stays a verified design (chosen below)
+        break;
+      }
     }
     const objectives::ArmMeasures raw = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.model);
     run.optimum = corrected(raw, correction);
@@ -396,7 +398,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
                     << run.rounds_stop_reason << ")\n";
           break;
         }
-        purpose = "improvement";
+        purpose = RoundPurpose::improvement;
         ++improvements;
         continue;
       }
@@ -407,7 +409,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
       // The next search is corrected by every verified design, within a trust region half as wide
       // (the linear discrepancy was not enough to hold this one), about the best verified design.
       radius *= 0.5;
-      purpose = "correction";
+      purpose = RoundPurpose::correction;
       ++corrections;
       continue;
     }
@@ -428,7 +430,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     }
     correction = next;
     x0 = run.optimum_x;
-    purpose = "correction";
+    purpose = RoundPurpose::correction;
     ++corrections;
   }
 
@@ -484,7 +486,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     std::cout << "check and correct, round by round:\n";
     for (std::size_t k = 0; k < run.rounds.size(); ++k) {
       const auto& r = run.rounds[k];
-      std::cout << "  round " << k << " (" << r.purpose << "): ";
+      std::cout << "  round " << k << " (" << purpose_name(r.purpose) << "): ";
       if (r.verification && r.verification->ok())
         std::cout << "verified mass " << fixed(r.verification->measures.mass_kg, 3) << " kg, "
                   << (meets_every_requirement(config, r.verification->measures, ref_strain) ? "every requirement met"

@@ -14,6 +14,16 @@
 #include "objectives/fit_range.hpp"
 
 namespace softarm::engine {
+
+const char* purpose_name(RoundPurpose purpose) {
+  switch (purpose) {
+    case RoundPurpose::first_search: return "first search";
+    case RoundPurpose::correction: return "correction";
+    case RoundPurpose::improvement: return "improvement";
+  }
+  return "?";
+}
+
 namespace {
 using report::format_number;
 
@@ -226,7 +236,7 @@ void write_design_outputs(const DesignRun& run) {
   summary["check_and_correct"] = nlohmann::json::array();
   for (const SearchRound& r : run.rounds)
     summary["check_and_correct"].push_back(
-        {{"purpose", r.purpose},
+        {{"purpose", purpose_name(r.purpose)},
          {"correction", {{"bending_factor", r.correction.bending_factor},
                          {"burst_utilisation_factor", r.correction.burst_factor},
                          {"from_3d_checks", r.correction.checks}}},
@@ -383,7 +393,7 @@ void write_design_outputs(const DesignRun& run) {
       const SearchRound& r = run.rounds[k];
       const bool ok = r.verification && r.verification->ok();
       const objectives::ArmMeasures* m = ok ? &r.verification->measures : nullptr;
-      round_rows.push_back({std::to_string(k), r.purpose, m ? format_number(m->mass_kg) : "-",
+      round_rows.push_back({std::to_string(k), purpose_name(r.purpose), m ? format_number(m->mass_kg) : "-",
                             m ? format_number(m->payload_kg) : "-", m ? format_number(m->min_bending_deg) : "-",
                             m ? format_number(m->burst_utilisation) : "-",
                             m ? std::string(meets_every_requirement(c, *m, run.reference_strain) ? "yes" : "NO") : "not verified"});

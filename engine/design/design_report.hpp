@@ -24,10 +24,15 @@ struct HistoryPoint {
   std::string phase;
 };
 
+/// Why a search round ran: the first search; a correction (the last verified design missed a
+/// requirement: check.corrections); an improvement (it met every one: check.improvement_rounds).
+enum class RoundPurpose { first_search, correction, improvement };
+/// "first search", "correction", "improvement": the words of the console, summary.json and the report.
+const char* purpose_name(RoundPurpose purpose);
+
 /// One search of a check-and-correct run and the 3D check of its optimum.
 struct SearchRound {
-  std::string purpose;                // "first search", "correction" (the last verified design missed a
-                                      // requirement) or "improvement" (it met every one: check.improvement_rounds)
+  RoundPurpose purpose = RoundPurpose::first_search;
   SolidCorrection correction;         // the search model's, during this search
   std::vector<double> optimum_x;
   objectives::ArmMeasures optimum;    // search model, corrected
