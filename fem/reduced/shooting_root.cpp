@@ -129,7 +129,7 @@ ShootingRoot shooting_root(const std::function<double(double)>& f, double start,
   // 3. No sign change seen: look for one.
   if (!search.bracketed()) search.search_outwards();
   // 2. Inside the bracket.
-  if (search.bracketed() && search.refine()) return result(search);
+  if (search.bracketed()) search.refine();
   return result(search);
 }
 
