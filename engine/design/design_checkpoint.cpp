@@ -41,6 +41,7 @@ DesignCheckpoint::DesignCheckpoint(const std::filesystem::path& directory, nlohm
 }
 
 std::optional<optimise::Evaluation> DesignCheckpoint::evaluation(const std::vector<double>& x) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
   const nlohmann::json* r = record(store_, key("evaluation", x));
   if (!r) return std::nullopt;
   optimise::Evaluation e;
@@ -56,6 +57,7 @@ void DesignCheckpoint::add(const std::vector<double>& x, const optimise::Evaluat
   bool finite = std::isfinite(e.objective);
   for (double g : e.constraints) finite = finite && std::isfinite(g);
   if (!finite) return;
+  const std::lock_guard<std::mutex> lock(mutex_);
   store_.append({{"key", key("evaluation", x)},
                  {"ok", e.ok},
                  {"failure", e.failure_reason},
@@ -64,22 +66,26 @@ void DesignCheckpoint::add(const std::vector<double>& x, const optimise::Evaluat
 }
 
 std::optional<objectives::SolidSegmentCheck> DesignCheckpoint::solid_check(const std::vector<double>& x) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
   const nlohmann::json* r = record(store_, key("solid_check", x));
   if (!r) return std::nullopt;
   return objectives::solid_check_from_json(r->at("check"));
 }
 
 void DesignCheckpoint::add(const std::vector<double>& x, const objectives::SolidSegmentCheck& check) {
+  const std::lock_guard<std::mutex> lock(mutex_);
   store_.append({{"key", key("solid_check", x)}, {"check", objectives::to_json(check)}});
 }
 
 std::optional<objectives::CellRodEvaluation> DesignCheckpoint::verification(const std::vector<double>& x) const {
+  const std::lock_guard<std::mutex> lock(mutex_);
   const nlohmann::json* r = record(store_, key("verification", x));
   if (!r) return std::nullopt;
   return objectives::cell_rod_evaluation_from_json(r->at("verification"));
 }
 
 void DesignCheckpoint::add(const std::vector<double>& x, const objectives::CellRodEvaluation& verification) {
+  const std::lock_guard<std::mutex> lock(mutex_);
   store_.append({{"key", key("verification", x)}, {"verification", objectives::to_json(verification)}});
 }
 

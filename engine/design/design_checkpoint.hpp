@@ -11,6 +11,7 @@
 // algorithm or budget reuses the evaluations; `--fresh` discards them (and
 // should, after softarm itself changed: the fingerprint is the config's).
 #include <filesystem>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,6 +30,7 @@ class DesignCheckpoint {
   /// std::runtime_error when the file belongs to another configuration.
   DesignCheckpoint(const std::filesystem::path& directory, nlohmann::json config_document, bool fresh);
 
+  /// These two may be called from several threads at once (the search's concurrent evaluations).
   std::optional<optimise::Evaluation> evaluation(const std::vector<double>& x) const;
   void add(const std::vector<double>& x, const optimise::Evaluation& e);
   std::optional<objectives::SolidSegmentCheck> solid_check(const std::vector<double>& x) const;
@@ -45,6 +47,7 @@ class DesignCheckpoint {
 
  private:
   studies::ResultsStore store_;
+  mutable std::mutex mutex_;  ///< guards store_ against concurrent evaluations
   int resumed_evaluations_ = 0, resumed_solid_checks_ = 0, resumed_verifications_ = 0;
 };
 

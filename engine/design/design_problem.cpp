@@ -7,6 +7,7 @@
 
 #include "engine/design/design_measures.hpp"
 #include "fem/core/input_error.hpp"
+#include "fem/core/parallel.hpp"
 
 namespace softarm::engine {
 
@@ -154,6 +155,9 @@ optimise::Problem design_problem(const DesignConfig& config, double reference_st
     }
     return e;
   };
+  // A design's evaluation depends on it alone (its FEM and rods hold no shared state; the
+  // checkpoint locks), so a gradient's neighbours run side by side, one thread each.
+  p.run_concurrently = [](int n, const std::function<void(int)>& task) { fem::parallel_tasks(n, task); };
   return p;
 }
 

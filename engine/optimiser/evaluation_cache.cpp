@@ -110,12 +110,36 @@ Evaluation EvaluationCache::evaluate(const std::vector<double>& raw) {
   }
   if (evaluations() >= global_limit_) throw BudgetExhausted(true);
   if (evaluations() >= local_limit_) throw BudgetExhausted(false);
-  Evaluation e = run(x);
+  Evaluation e;
+  if (auto held = held_.find(k); held != held_.end()) {
+    e = std::move(held->second);
+    held_.erase(held);
+  } else {
+    e = run(x);
+  }
   entries_.push_back(Entry{x, e});
   index_.emplace(k, entries_.size() - 1);
   if (is_feasible(e, tolerance_)) best_feasible_ = std::min(best_feasible_, e.objective);
   report(x, e, false);
   return e;
+}
+
+void EvaluationCache::prefetch(const std::vector<std::vector<double>>& designs) {
+  if (!problem_.run_concurrently) return;
+  std::vector<std::vector<double>> todo;
+  std::vector<std::vector<std::int64_t>> keys;
+  for (const auto& raw : designs) {
+    if (static_cast<int>(todo.size()) >= remaining()) break;
+    std::vector<double> x = space_.snapped(raw);
+    auto k = space_.key(x);
+    if (index_.count(k) || held_.count(k) || std::find(keys.begin(), keys.end(), k) != keys.end()) continue;
+    todo.push_back(std::move(x));
+    keys.push_back(std::move(k));
+  }
+  if (todo.size() < 2) return;
+  std::vector<Evaluation> results(todo.size());
+  problem_.run_concurrently(static_cast<int>(todo.size()), [&](int i) { results[i] = run(todo[i]); });
+  for (std::size_t i = 0; i < todo.size(); ++i) held_.emplace(std::move(keys[i]), std::move(results[i]));
 }
 
 const EvaluationCache::Entry* EvaluationCache::best(

@@ -48,6 +48,13 @@ class EvaluationCache {
   /// is not cached and the budget is spent; never throws for a failing design.
   Evaluation evaluate(const std::vector<double>& x);
 
+  /// Evaluates, side by side (Problem::run_concurrently), the designs among `designs` that are
+  /// neither cached nor held yet, at most remaining() of them in their order. Their results
+  /// are held, not counted: a later evaluate() of one takes it as that call's real evaluation,
+  /// with the same budget check, count and report as if it ran then. Without
+  /// run_concurrently, or with fewer than two designs to run, it does nothing.
+  void prefetch(const std::vector<std::vector<double>>& designs);
+
   int evaluations() const { return static_cast<int>(entries_.size()); }
   int cache_hits() const { return cache_hits_; }
   /// Real evaluations still allowed (the tighter of the global and local limits).
@@ -91,6 +98,7 @@ class EvaluationCache {
   std::string phase_;
   std::vector<Entry> entries_;
   std::map<std::vector<std::int64_t>, std::size_t> index_;
+  std::map<std::vector<std::int64_t>, Evaluation> held_;  ///< prefetched, not yet asked for
   int cache_hits_ = 0;
   std::vector<Progress> history_;
   double best_feasible_ = 0;

@@ -18,6 +18,15 @@ Linearisation linearise(RelaxedObjective& f, const std::vector<double>& u_in, do
     return lin;
   }
   lin.gradient_ok = true;
+  // The forward (or, at the upper bound, backward) neighbours side by side, before the loop
+  // asks for them one by one.
+  std::vector<std::vector<double>> neighbours;
+  for (std::size_t j = 0; j < n; ++j) {
+    std::vector<double> v = u;
+    v[j] += u[j] + step <= 1.0 ? step : -step;
+    if (v[j] >= 0.0) neighbours.push_back(std::move(v));
+  }
+  f.prefetch(neighbours);
   for (std::size_t j = 0; j < n; ++j) {
     // Forward unless that leaves the box; the other side if the first fails.
     const double forward = u[j] + step <= 1.0 ? step : -step;

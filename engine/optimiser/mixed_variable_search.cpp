@@ -73,6 +73,10 @@ void MixedVariableSearch::run(const std::vector<double>& start) {
   std::vector<Screened> screened{{first, anchor, best_first->value}};
   {
     EvaluationCache::Scope scope(cache_, "categorical screening", cache_.remaining());
+    std::vector<std::vector<double>> points;
+    for (const auto& combo : combos)
+      if (combo != first) points.push_back(with_combo(anchor, combo));
+    cache_.prefetch(points);
     for (const auto& combo : combos) {
       if (combo == first) continue;
       const std::vector<double> x = with_combo(anchor, combo);

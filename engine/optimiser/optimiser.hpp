@@ -21,7 +21,8 @@
 // Gradients (nlopt:slsqp, nlopt:ccsaq, ipopt) are forward differences in u with
 // step h = `finite_difference_step` (backward at the upper bound, or when the
 // forward point fails); objective and constraint gradients come from the same
-// n+1 evaluations.
+// n+1 evaluations, whose n neighbours run side by side when the problem gives
+// `run_concurrently`.
 //
 // Integer variables: continuous relaxation, then a neighbour search.
 //  1. During the continuous search an integer variable moves freely in
@@ -94,6 +95,12 @@ struct Problem {
   /// categorical as the choice index (double). Must return
   /// constraint_names.size() constraints.
   std::function<Evaluation(const std::vector<double>& x)> evaluate;
+  /// Optional: runs task(i) for every i in [0, n), several at once. Set it only when `evaluate`
+  /// is safe to call concurrently and depends on x alone. The designs the optimiser knows it
+  /// will ask for next (a finite-difference gradient's neighbours, the categorical screening)
+  /// are then evaluated side by side; they are still counted, cached, reported and returned in
+  /// the order a serial run asks for them, so the search takes the same path either way.
+  std::function<void(int n, const std::function<void(int i)>& task)> run_concurrently;
 };
 
 /// Reported after every real evaluation (and, with Options::report_cache_hits,

@@ -28,7 +28,7 @@ std::vector<double> RelaxedObjective::unit(const std::vector<double>& x) const {
   return u;
 }
 
-Evaluation RelaxedObjective::operator()(const std::vector<double>& u) {
+std::vector<RelaxedObjective::Corner> RelaxedObjective::corners(const std::vector<double>& u) const {
   std::vector<double> x = physical(u);
   // Fractional searched integers: (index, fraction), x set to the floor.
   std::vector<std::pair<std::size_t, double>> fractional;
@@ -47,33 +47,44 @@ Evaluation RelaxedObjective::operator()(const std::vector<double>& u) {
   }
   std::stable_sort(fractional.begin(), fractional.end(),
                    [](const auto& a, const auto& b) { return a.second > b.second; });
-
-  Evaluation result;
-  result.objective = 0;
-  result.constraints.assign(constraint_count_, 0.0);
-  auto add = [&](const std::vector<double>& corner, double weight) {
-    if (weight <= 0) return;
-    Evaluation e = cache_.evaluate(corner);
-    if (!result.ok) return;
-    if (!e.ok) {
-      result.ok = false;
-      result.failure_reason = e.failure_reason;
-      return;
-    }
-    result.objective += weight * e.objective;
-    for (std::size_t c = 0; c < e.constraints.size(); ++c) result.constraints[c] += weight * e.constraints[c];
-  };
+  std::vector<Corner> out;
   double previous = 1;
   for (std::size_t j = 0; j <= fractional.size(); ++j) {
     const double next = j < fractional.size() ? fractional[j].second : 0.0;
-    add(x, previous - next);
+    if (previous - next > 0) out.push_back({x, previous - next});
     if (j < fractional.size()) x[fractional[j].first] += 1;
     previous = next;
+  }
+  return out;
+}
+
+void RelaxedObjective::prefetch(const std::vector<std::vector<double>>& us) {
+  std::vector<std::vector<double>> designs;
+  for (const auto& u : us)
+    for (Corner& c : corners(u)) designs.push_back(std::move(c.x));
+  cache_.prefetch(designs);
+}
+
+Evaluation RelaxedObjective::operator()(const std::vector<double>& u) {
+  const std::vector<Corner> lattice = corners(u);
+  Evaluation result;
+  result.objective = 0;
+  result.constraints.assign(constraint_count_, 0.0);
+  for (const Corner& corner : lattice) {
+    Evaluation e = cache_.evaluate(corner.x);  // every corner, even after a failed one: each is cached
+    if (!result.ok) continue;
+    if (!e.ok) {
+      result.ok = false;
+      result.failure_reason = e.failure_reason;
+      continue;
+    }
+    result.objective += corner.weight * e.objective;
+    for (std::size_t c = 0; c < e.constraints.size(); ++c) result.constraints[c] += corner.weight * e.constraints[c];
   }
   if (!result.ok) {
     result.objective = 0;
     result.constraints.clear();
-    if (!fractional.empty()) result.failure_reason = "integer-lattice corner failed: " + result.failure_reason;
+    if (lattice.size() > 1) result.failure_reason = "integer-lattice corner failed: " + result.failure_reason;
     return result;
   }
 

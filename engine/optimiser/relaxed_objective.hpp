@@ -36,6 +36,10 @@ class RelaxedObjective {
   /// The (interpolated) evaluation at u. Throws BudgetExhausted.
   Evaluation operator()(const std::vector<double>& u);
 
+  /// Evaluates side by side the real designs that operator() will need at each of `us`
+  /// (EvaluationCache::prefetch).
+  void prefetch(const std::vector<std::vector<double>>& us);
+
   /// The relaxed physical design at u (integers possibly fractional).
   std::vector<double> physical(const std::vector<double>& u) const;
   /// The normalised searched coordinates of a physical design.
@@ -51,6 +55,13 @@ class RelaxedObjective {
   double penalty_constraint(std::size_t i) const;
 
  private:
+  /// A real design of the integer-lattice cell around u and its interpolation weight (> 0).
+  struct Corner {
+    std::vector<double> x;
+    double weight;
+  };
+  std::vector<Corner> corners(const std::vector<double>& u) const;
+
   const DesignSpace& space_;
   EvaluationCache& cache_;
   std::vector<double> base_;
