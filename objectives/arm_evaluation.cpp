@@ -1,5 +1,6 @@
 #include "objectives/arm_evaluation.hpp"
 
+#include "fem/core/parallel.hpp"
 #include "fem/materials/burst_criteria.hpp"
 
 #include "objectives/payload_capacity.hpp"
@@ -7,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 
 namespace softarm::objectives {
 namespace {
@@ -176,15 +178,24 @@ ArmMeasures evaluate_arm(const ArmCandidate& c, const EvaluationSettings& s) {
 
   out.min_bending_deg = 1e300;
   // Each segment's bending path by the rod, then its lone-RRA FEM path, then the criteria along
-  // the path. The FEM paths run one after the other: run concurrently they crashed twice in
-  // ~600 designs inside UMFPACK's solve (each path sets OpenBLAS's thread count, a global). The
-  // main job later crashed there run sequentially too: LinearSolver's LU kept only a reference to
-  // a tangent that Newton had already freed (fixed there), which may have been the cause both times.
+  // the path: the three segments side by side, one thread each (fem::parallel_tasks; inside a
+  // concurrent evaluation of the search, one after the other). Every FEM path then runs on one
+  // thread, whatever the thread count, so the measures do not depend on it. (An earlier attempt
+  // crashed twice in ~600 designs inside UMFPACK's solve; the cause was LinearSolver's LU keeping
+  // only a reference to a tangent Newton had freed, which crashed sequential runs too; fixed there.)
   std::array<std::vector<double>, 3> stretch;
+  std::array<std::exception_ptr, 3> failure;  // the first segment's failure is the one reported
+  fem::parallel_tasks(3, [&](int n) {
+    try {
+      out.segments[n] = bend_segment(c, s, n, stretch[n]);
+      const double needed = stretch[n].empty() ? 1.1 : *std::max_element(stretch[n].begin(), stretch[n].end());
+      judge_segment(out.segments[n], stretch[n], c, s, n, segment_rra_fem(c, s, n, needed));
+    } catch (...) {
+      failure[n] = std::current_exception();
+    }
+  });
   for (int n = 0; n < 3; ++n) {
-    out.segments[n] = bend_segment(c, s, n, stretch[n]);
-    const double needed = stretch[n].empty() ? 1.1 : *std::max_element(stretch[n].begin(), stretch[n].end());
-    judge_segment(out.segments[n], stretch[n], c, s, n, segment_rra_fem(c, s, n, needed));
+    if (failure[n]) std::rethrow_exception(failure[n]);
     add_segment(out, out.segments[n]);
   }
 
