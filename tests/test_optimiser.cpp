@@ -431,6 +431,9 @@ TEST_CASE("optimiser: evaluations run side by side take the serial run's path", 
       CHECK(batches > 0);
       CHECK(serial_calls == serial.evaluations);
       CHECK(calls >= concurrent.evaluations);  // a prefetched design the budget then refused is extra
+      // The held results are the ones used: with budget to spare, nothing is computed twice.
+      if (budget == 120) CHECK(calls == concurrent.evaluations);
+      if (budget == 17) CHECK_THAT(concurrent.stop_reason, Contains("budget"));
       CHECK(concurrent.evaluations <= budget);
       CHECK(concurrent.x == serial.x);
       CHECK(concurrent.feasible == serial.feasible);

@@ -138,7 +138,11 @@ void EvaluationCache::prefetch(const std::vector<std::vector<double>>& designs) 
   }
   if (todo.size() < 2) return;
   std::vector<Evaluation> results(todo.size());
-  problem_.run_concurrently(static_cast<int>(todo.size()), [&](int i) { results[i] = run(todo[i]); });
+  try {
+    problem_.run_concurrently(static_cast<int>(todo.size()), [&](int i) { results[i] = run(todo[i]); });
+  } catch (const std::exception&) {
+    return;  // no threads to be had (run() itself never throws): the serial search computes them as it asks
+  }
   for (std::size_t i = 0; i < todo.size(); ++i) held_.emplace(std::move(keys[i]), std::move(results[i]));
 }
 

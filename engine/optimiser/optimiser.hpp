@@ -100,6 +100,8 @@ struct Problem {
   /// will ask for next (a finite-difference gradient's neighbours, the categorical screening)
   /// are then evaluated side by side; they are still counted, cached, reported and returned in
   /// the order a serial run asks for them, so the search takes the same path either way.
+  /// Whatever threads `evaluate` starts itself must allow for running beside another
+  /// (fem::parallel_tasks does: inside its tasks the FEM runs on one thread).
   std::function<void(int n, const std::function<void(int i)>& task)> run_concurrently;
 };
 
