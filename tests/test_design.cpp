@@ -145,6 +145,11 @@ TEST_CASE("bad requirements name the field", "[design]") {
     CHECK_THAT(error_field(doc), Catch::Contains("baseline_geometry.taper_ratio") && Catch::Contains("1.5") &&
                                      Catch::Contains("[0.35, 0.7]"));
   }
+  SECTION("connectors that leave the segments no length are named, not the length they imply") {
+    doc["baseline_geometry"]["connector_thickness_mm"] = 250;
+    CHECK_THAT(error_field(doc), Catch::Contains("baseline_geometry.connector_thickness_mm") &&
+                                     Catch::Contains("250 mm") && Catch::Contains("< 200 mm"));
+  }
   SECTION("a baseline that cannot be built, where no variable replaces it") {
     doc["design_space"].erase("wall_thickness_normalised");
     doc["baseline_geometry"]["wall_thickness_normalised"] = 5;

@@ -374,8 +374,14 @@ DesignConfig read_design_config(const nlohmann::json& document) {
     fem::JsonReader reader(g, "baseline_geometry");
     c.baseline_geometry = fem::read_spl_parameters(reader);
     reader.finish();
-    c.baseline_geometry.set("length_mm",
-                            (c.requirements.length_m * 1000 - 3 * c.baseline_geometry.connector_thickness_mm) / 3);
+    const double arm_mm = c.requirements.length_m * 1000, connector_mm = c.baseline_geometry.connector_thickness_mm;
+    if (!(3 * connector_mm < arm_mm)) {
+      std::ostringstream why;
+      why << connector_mm << " mm: three connectors of it leave no length for the segments of the " << arm_mm
+          << " mm arm (requirements.length_m); valid: < " << arm_mm / 3 << " mm";
+      throw fem::InputError("baseline_geometry.connector_thickness_mm", why.str());
+    }
+    c.baseline_geometry.set("length_mm", (arm_mm - 3 * connector_mm) / 3);
     fem::build_spl_design(c.baseline_geometry);
   }
   root.finish();
