@@ -18,21 +18,20 @@ Linearisation linearise(RelaxedObjective& f, const std::vector<double>& u_in, do
     return lin;
   }
   lin.gradient_ok = true;
-  // The forward (or, at the upper bound, backward) neighbours side by side, before the loop
-  // asks for them one by one.
+  // Forward unless that leaves the box (the other side if the first fails, below). The first
+  // choices run side by side, before the loop asks for them one by one.
+  std::vector<double> forward(n);
   std::vector<std::vector<double>> neighbours;
   for (std::size_t j = 0; j < n; ++j) {
-    std::vector<double> v = u;
-    v[j] += u[j] + step <= 1.0 ? step : -step;
-    if (v[j] >= 0.0) neighbours.push_back(std::move(v));
+    forward[j] = u[j] + step <= 1.0 ? step : -step;
+    neighbours.push_back(u);
+    neighbours.back()[j] += forward[j];
   }
   f.prefetch(neighbours);
   for (std::size_t j = 0; j < n; ++j) {
-    // Forward unless that leaves the box; the other side if the first fails.
-    const double forward = u[j] + step <= 1.0 ? step : -step;
     Evaluation neighbour;
     double h = 0;
-    for (double trial : {forward, -forward}) {
+    for (double trial : {forward[j], -forward[j]}) {
       if (u[j] + trial < 0.0 || u[j] + trial > 1.0) continue;
       std::vector<double> v = u;
       v[j] += trial;

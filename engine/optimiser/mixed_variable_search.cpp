@@ -73,15 +73,17 @@ void MixedVariableSearch::run(const std::vector<double>& start) {
   std::vector<Screened> screened{{first, anchor, best_first->value}};
   {
     EvaluationCache::Scope scope(cache_, "categorical screening", cache_.remaining());
+    std::vector<std::vector<int>> others;
     std::vector<std::vector<double>> points;
     for (const auto& combo : combos)
-      if (combo != first) points.push_back(with_combo(anchor, combo));
+      if (combo != first) {
+        others.push_back(combo);
+        points.push_back(with_combo(anchor, combo));
+      }
     cache_.prefetch(points);
-    for (const auto& combo : combos) {
-      if (combo == first) continue;
-      const std::vector<double> x = with_combo(anchor, combo);
+    for (std::size_t k = 0; k < others.size(); ++k) {
       try {
-        screened.push_back({combo, x, cache_.evaluate(x)});
+        screened.push_back({others[k], points[k], cache_.evaluate(points[k])});
       } catch (const BudgetExhausted&) {
         notes_.push_back("categorical screening: evaluation budget reached");
         break;
