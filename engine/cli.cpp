@@ -44,7 +44,7 @@ int simulate_tca(fem::SceneConfig config, const fem::PathCheckpoint& checkpoint)
   const auto result = fem::run_tca_scene(config.tca, [&](const fem::TcaState& s) { writer.add(s); });
   if (const std::string note = checkpoint_note(checkpoint, result.path); !note.empty()) std::cout << note << "\n";
   write_tca_summary(config, result, std::cout);
-  return result.path.outcome == fem::PathOutcome::stalled ? 1 : 0;
+  return fem::is_answer(result.path.outcome) ? 0 : 1;
 }
 
 int simulate_spl(fem::SceneConfig config, const fem::PathCheckpoint& checkpoint) {
@@ -56,7 +56,7 @@ int simulate_spl(fem::SceneConfig config, const fem::PathCheckpoint& checkpoint)
   const auto result = fem::run_spl_scene(config.spl, [&](const fem::SplState& s) { writer.add(s); });
   if (const std::string note = checkpoint_note(checkpoint, result.path); !note.empty()) std::cout << note << "\n";
   write_spl_summary(config, result, std::cout);
-  return result.path.outcome == fem::PathOutcome::stalled ? 1 : 0;
+  return fem::is_answer(result.path.outcome) ? 0 : 1;
 }
 
 int simulate(const std::string& file, const std::string& output_override, int mesh_level_override,
@@ -96,8 +96,8 @@ int simulate(const std::string& file, const std::string& output_override, int me
   RraCurveWriter writer(config.output.directory, std::cout);
   const auto result = fem::run_rra_scene(config.rra, [&](const fem::RraCurvePoint& p) { writer.add(p); });
   write_rra_summary(config, result, std::cout);
-  // A limit point is a valid physical answer; a stall is not the requested result.
-  return result.path.outcome == fem::PathOutcome::stalled ? 1 : 0;
+  // A limit point or a named failure is a valid physical answer; a stall is not the requested result.
+  return fem::is_answer(result.path.outcome) ? 0 : 1;
 }
 
 int export_deck(const std::string& file, const std::string& deck_path, double pressure_kPa, int mesh_level_override) {

@@ -109,7 +109,7 @@ int simulate_cell_rod_tca(const fem::SceneConfig& config) {
                    {"outcome", fem::to_string(r.outcome)}, {"reached_pressure_kPa", r.reached_pressure_kPa},
                    {"diagnosis", r.diagnosis}, {"cell_seconds", r.cell_seconds}, {"rod_seconds", r.rod_seconds}});
   std::cout << "written: " << dir << "/curve.csv, " << dir << "/summary.json\n";
-  return r.outcome == fem::PathOutcome::stalled ? 1 : 0;
+  return fem::is_answer(r.outcome) ? 0 : 1;
 }
 
 int simulate_cell_rod_spl(const fem::SceneConfig& config) {

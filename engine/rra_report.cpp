@@ -87,10 +87,7 @@ nlohmann::json write_rra_summary(const fem::SceneConfig& config, const fem::RraR
                   {"assembly", r.timings.assembly_s},
                   {"factorize", r.path.factorize_s}, {"total", r.timings.total_s}}}};
   summary["solver"]["energy_evaluations"] = r.timings.evaluations;
-  if (r.path.outcome == fem::PathOutcome::limit_point) {
-    summary["estimated_limit_pressure_kPa"] = r.path.estimated_limit_pressure_kPa;
-    summary["limit_point_found_by"] = fem::to_string(r.path.limit_kind);
-  }
+  add_failure_json(summary, r.path);
   write_json_file(dir, "summary.json", summary);
   if (config.output.vtu) write_vtu(dir + "/deformed.vtu", r);
 

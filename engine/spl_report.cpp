@@ -86,6 +86,7 @@ nlohmann::json write_spl_summary(const fem::SceneConfig& config, const fem::SplR
       {"solver", path_solver_json(r.path)},
       {"time_s", {{"mesh", r.timings.mesh_s}, {"setup", r.timings.setup_s}, {"solve", r.timings.solve_s},
                   {"assembly", r.timings.assembly_s}, {"factorize", r.path.factorize_s}, {"total", r.timings.total_s}}}};
+  add_failure_json(summary, r.path);
   write_json_file(dir, "summary.json", summary);
   if (config.output.vtu) {
     Eigen::MatrixXd x(r.mesh.num_nodes(), 3);

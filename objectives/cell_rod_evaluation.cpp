@@ -271,8 +271,9 @@ CellRodEvaluation evaluate_arm_on_cells(const ArmCandidate& c, const EvaluationS
     if (out.segment_outcome[n] != fem::PathOutcome::completed &&
         (seg.safe_pressure_kPa < 0 || stop_kPa < seg.safe_pressure_kPa)) {
       seg.safe_pressure_kPa = stop_kPa;
-      seg.governing = out.segment_outcome[n] == fem::PathOutcome::limit_point ? "limit point (cells)"
-                                                                              : "stall of the cells";
+      seg.governing = out.segment_outcome[n] == fem::PathOutcome::stalled
+                          ? "stall of the cells"
+                          : fem::in_words(out.segment_outcome[n]) + " (cells)";
       seg.burst_utilisation = std::max(seg.burst_utilisation, s.working_pressure_kPa / std::max(stop_kPa, 1.0));
     }
     add_segment(m, seg);
@@ -382,11 +383,8 @@ CellRodEvaluation cell_rod_evaluation_from_json(const nlohmann::json& j) {
   m.safe_pressure_kPa = j.at("safe_pressure_kPa").get<double>();
   m.durability_log_strain = j.at("durability_log_strain").get<double>();
   m.seconds = j.at("seconds").get<double>();
-  for (std::size_t n = 0; n < 3; ++n) {
-    const std::string o = j.at("segment_outcome").at(n).get<std::string>();
-    for (const auto v : {fem::PathOutcome::completed, fem::PathOutcome::limit_point, fem::PathOutcome::stalled})
-      if (o == fem::to_string(v)) e.segment_outcome[n] = v;
-  }
+  for (std::size_t n = 0; n < 3; ++n)
+    e.segment_outcome[n] = fem::path_outcome_named(j.at("segment_outcome").at(n).get<std::string>());
   e.segment_reached_kPa = j.at("segment_reached_kPa").get<std::array<double, 3>>();
   e.cells = j.at("cells").get<int>();
   e.end_cells = j.at("end_cells").get<int>();

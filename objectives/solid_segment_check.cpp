@@ -32,6 +32,7 @@ std::string SolidSegmentCheck::working_pressure_verdict() const {
   at << std::fixed << std::setprecision(1) << reached_pressure_kPa << " kPa)";
   if (path == fem::PathOutcome::completed) return "held";
   if (path == fem::PathOutcome::limit_point) return "NOT held (ballooning limit point at " + at.str();
+  if (fem::is_failure(path)) return "NOT held (" + fem::in_words(path) + " at " + at.str();
   return "not established (the 3D path stalled at " + at.str();
 }
 
@@ -60,8 +61,7 @@ SolidSegmentCheck solid_check_from_json(const nlohmann::json& j) {
   c.dofs = j.at("dofs").get<int>();
   c.reached_pressure_kPa = j.at("reached_pressure_kPa").get<double>();
   c.outcome = j.at("outcome").get<std::string>();
-  for (const auto o : {fem::PathOutcome::completed, fem::PathOutcome::limit_point, fem::PathOutcome::stalled})
-    if (j.at("path").get<std::string>() == fem::to_string(o)) c.path = o;
+  c.path = fem::path_outcome_named(j.at("path").get<std::string>());
   c.bending_deg = j.at("bending_deg_3d").get<double>();
   c.rod_bending_deg = j.at("bending_deg_rod").get<double>();
   c.pressure_for_target_kPa = optional_kPa("pressure_for_target_bending_kPa_3d");

@@ -61,7 +61,7 @@ json evaluate_rra_fem(const StudySpec& spec, const fem::RraSceneSpec& scene) {
   out["mass_g"] = (r.tube_mass_kg + r.ring_mass_kg) * 1e3;
   out["reached_pressure_kPa"] = r.path.reached_pressure_kPa;
   out["max_pressure_kPa"] = scene.path.max_pressure_kPa;
-  if (r.path.outcome == fem::PathOutcome::stalled) out["status"] = "incomplete";
+  if (!fem::is_answer(r.path.outcome)) out["status"] = "incomplete";
   out["tube_max_stretch"] = last.tube_max_stretch;
   out["tube_max_principal_stress_MPa"] = last.tube_max_principal_stress_MPa;
   out["tube_max_log_strain"] = last.tube_max_log_strain;
@@ -76,6 +76,10 @@ json evaluate_rra_fem(const StudySpec& spec, const fem::RraSceneSpec& scene) {
                                                                    : r.path.reached_pressure_kPa;
     out["limit_pressure_kPa"] = p_limit;
     utilisation = std::max(utilisation, scene.path.max_pressure_kPa / p_limit);  // criterion (c)
+  } else if (fem::is_answer(r.path.outcome) && r.path.outcome != fem::PathOutcome::completed &&
+             r.path.reached_pressure_kPa > 0) {
+    // A named material or element failure: the design fails where the path ended.
+    utilisation = std::max(utilisation, scene.path.max_pressure_kPa / r.path.reached_pressure_kPa);
   }
   out["burst_utilisation"] = utilisation;
   if (r.path.outcome != fem::PathOutcome::completed) out["diagnosis"] = r.path.diagnosis;
@@ -158,7 +162,7 @@ json evaluate_tca_fem(const fem::TcaSceneSpec& scene) {
   out["mass_g"] = r.mass_kg * 1e3;
   out["reached_pressure_kPa"] = r.path.reached_pressure_kPa;
   out["max_pressure_kPa"] = scene.output_pressures_kPa.back();
-  if (r.path.outcome == fem::PathOutcome::stalled) out["status"] = "incomplete";
+  if (!fem::is_answer(r.path.outcome)) out["status"] = "incomplete";
   out["tip_x_mm"] = last.tip_position_mm.x();
   out["tip_z_mm"] = last.tip_position_mm.z();
   double utilisation = 0;
@@ -167,7 +171,8 @@ json evaluate_tca_fem(const fem::TcaSceneSpec& scene) {
     if (peak.part == "tube" || peak.part == "sheath")
       utilisation = std::max(utilisation, criteria_ab(m, peak.max_principal_stress_MPa, peak.max_principal_stretch, 1.5));
   }
-  if (r.path.outcome == fem::PathOutcome::limit_point && r.path.reached_pressure_kPa > 0)
+  // A limit point or a named material or element failure below the last pressure: the design fails there.
+  if (fem::is_answer(r.path.outcome) && r.path.outcome != fem::PathOutcome::completed && r.path.reached_pressure_kPa > 0)
     utilisation = std::max(utilisation, r.states.back().pressure_kPa > 0 ? scene.output_pressures_kPa.back() /
                                                                                r.path.reached_pressure_kPa
                                                                          : 1.0);

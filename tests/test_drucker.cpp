@@ -12,12 +12,16 @@
 
 #include "engine/material_command.hpp"
 #include "fem/core/input_error.hpp"
+#include "fem/forms/make_elastic_form.hpp"
 #include "fem/materials/drucker_stability.hpp"
 #include "fem/materials/isochoric_law.hpp"
 #include "fem/materials/material.hpp"
 #include "fem/materials/mooney_rivlin.hpp"
 #include "fem/materials/neo_hookean.hpp"
 #include "fem/materials/ogden.hpp"
+#include "fem/mesh/quadratic_mesh.hpp"
+#include "fem/mesh/structured_mesh.hpp"
+#include "support/test_problems.hpp"
 
 using namespace softarm::fem;
 
@@ -163,6 +167,40 @@ TEST_CASE("Mooney-Rivlin with C01 < 0 loses stability where the closed form says
   for (std::size_t k = 0; k < 3; ++k) {
     CHECK(same[k].lambda_min == Approx(result[k].lambda_min).epsilon(1e-9));
     CHECK(same[k].lambda_max == Approx(result[k].lambda_max).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("the elastic form finds the Gauss points where its law is not Drucker stable", "[drucker][forms]") {
+  // A distorted axisymmetric Q2 patch in the same Mooney-Rivlin law, stretched uniaxially along z
+  // without volume change, x = (λ^(-1/2) r, λ z): every point sees (λ, λ^(-1/2), λ^(-1/2)), unstable
+  // exactly beyond λ_max = √(5/3). A uniform dilatation s on top changes J, not the isochoric state.
+  const auto mr = std::make_shared<MooneyRivlin>(0.5, -0.3, VolumetricPolynomial({0.1}));
+  const Mesh mesh = to_quadratic(rectangle_mesh(2.0, 5.0, 0.0, 3.0, 3, 3, 0.2));
+  const auto form = make_elastic_form(mesh, {softarm::test::material(mr)}, VolumetricTreatment::projected_dilatation);
+  const Vector X = flattened_positions(mesh);
+  const auto stretched = [&](double lambda, double s) {
+    Vector x = X;
+    for (int n = 0; n < mesh.num_nodes(); ++n) {
+      x[2 * n] = s * X[2 * n] / std::sqrt(lambda);
+      x[2 * n + 1] = s * X[2 * n + 1] * lambda;
+    }
+    return x;
+  };
+  const double lambda_max = std::sqrt(5.0 / 3.0);
+  const int points = mesh.num_elements() * 9;  // 3×3 Gauss points per Q2 element
+  for (const double s : {1.0, 1.05}) {
+    INFO("dilatation " << s);
+    CHECK_FALSE(form->material_instability(X).found());
+    CHECK_FALSE(form->material_instability(stretched(lambda_max * (1 - 1e-4), s)).found());
+    const MaterialInstability beyond = form->material_instability(stretched(lambda_max * (1 + 1e-4), s));
+    CHECK(beyond.unstable_points == points);
+    CHECK(beyond.checked_points == points);
+    CHECK(beyond.max_stretch == Approx(lambda_max * (1 + 1e-4)).epsilon(1e-10));
+    CHECK(beyond.min_stretch == Approx(std::pow(lambda_max * (1 + 1e-4), -0.5)).epsilon(1e-10));
+    CHECK(beyond.element >= 0);
+    CHECK(beyond.node == mesh.element(beyond.element)[0]);
+    // Uniaxial compression is stable down to the closed form's λ_min (0.82 here): 0.9 is inside.
+    CHECK_FALSE(form->material_instability(stretched(0.9, s)).found());
   }
 }
 

@@ -179,6 +179,17 @@ void check_rra_result(const fem::RraSceneSpec& spec, const fem::RraResult& r) {
       CHECK_THAT(p.diagnosis, Catch::Contains("stalled"));
       CHECK_THAT(p.diagnosis, Catch::Contains(fem::to_string(p.path.failure)));
       break;
+    case PathOutcome::material_instability:
+      // Named with the stretch at which the law is unstable (issue 38).
+      CHECK(p.material.found());
+      CHECK(p.reached_pressure_kPa < p_max);
+      CHECK_THAT(p.diagnosis, Catch::Contains("not Drucker stable"));
+      break;
+    case PathOutcome::element_inversion:
+      CHECK(p.inverted_element >= 0);
+      CHECK(p.reached_pressure_kPa < p_max);
+      CHECK_THAT(p.diagnosis, Catch::Contains("inside out"));
+      break;
   }
 }
 

@@ -4,7 +4,9 @@
 // solver without the pressure load stiffness is not a limit point).
 #include <catch2/catch.hpp>
 
+#include "fem/materials/drucker_stability.hpp"
 #include "fem/materials/material.hpp"
+#include "fem/materials/yeoh.hpp"
 #include "fem/scenes/rra_scene.hpp"
 #include "support/test_problems.hpp"
 
@@ -200,6 +202,51 @@ TEST_CASE("a solver that gives up early reports a stall, not a burst", "[rra][li
   REQUIRE_FALSE(r.curve.empty());
   CHECK(r.curve.back().pressure_kPa == Approx(r.path.reached_pressure_kPa));  // the last state reached is reported
   for (const auto& p : r.curve) CHECK(std::isfinite(p.extension_mm));
+}
+
+TEST_CASE("a silicone past its Drucker stability ends in a material instability, named with its stretch", "[rra][limit]") {
+  // A Yeoh law with C20 < 0 softens beyond moderate stretch (`softarm material check`: uniaxial
+  // stable to 1.74, equibiaxial to 1.36). The thesis RRA in it stops where the stretch concentrates
+  // (the bore's corner at the end cap); the same RRA with C20 = 0 carries the pressure.
+  const auto soft = [](double C20) {
+    return test::material(std::make_shared<Yeoh>(0.06, C20, 0.0, VolumetricPolynomial({0.7}), "test"), 1.08);
+  };
+  auto spec = thesis_rra(1);
+  spec.path.max_pressure_kPa = 40.0;
+  spec.path.output_pressures_kPa = {10.0, 20.0, 30.0, 40.0};
+  spec.tube_material = soft(-0.01);
+  const auto r = run_rra_scene(spec);
+  INFO(r.path.diagnosis);
+  REQUIRE(r.path.outcome == PathOutcome::material_instability);
+  CHECK(is_answer(r.path.outcome));
+  CHECK(r.path.reached_pressure_kPa > 10.0);  // 35.06 kPa at mesh level 1 (docs/model.md)
+  CHECK(r.path.reached_pressure_kPa < 40.0);
+  CHECK(r.path.material.unstable_points >= 1);
+  CHECK(r.path.material.max_stretch > 1.36);  // beyond every path's stable stretch but the uniaxial one's
+  CHECK(r.path.diagnosis.find("not Drucker stable") != std::string::npos);
+  CHECK(r.path.diagnosis.find("r = ") != std::string::npos);  // where
+  CHECK(r.path.material.unstable_points < r.path.material.checked_points);
+  spec.tube_material = soft(0.0);
+  const auto stable = run_rra_scene(spec);
+  INFO(stable.path.diagnosis);
+  CHECK(stable.path.outcome == PathOutcome::completed);
+}
+
+TEST_CASE("an element that every step turns inside out is named, not reported as a stall", "[rra][limit]") {
+  // A soft tube asked for 1 MPa in one step, with no line search and no room to cut back: the first
+  // Newton step turns elements inside out at every step size the path may take.
+  auto spec = plain_tube(test::neo_hookean(0.05, 1.0), 1000.0);
+  spec.path.steps.initial_increment = 1.0;
+  spec.path.steps.min_increment = 0.5;
+  spec.path.newton.max_line_search = 1;
+  const auto r = run_rra_scene(spec);
+  INFO(r.path.diagnosis);
+  REQUIRE(r.path.outcome == PathOutcome::element_inversion);
+  CHECK(r.path.path.failure == Failure::inverted_element);
+  CHECK(r.path.inverted_element >= 0);
+  CHECK(r.path.inverted_element < r.mesh.num_elements());
+  CHECK(r.path.diagnosis.find("element " + std::to_string(r.path.inverted_element)) != std::string::npos);
+  CHECK(r.path.diagnosis.find("inside out") != std::string::npos);
 }
 
 TEST_CASE("thesis RRA with square rings of equal area extends at low pressure", "[rra]") {

@@ -16,15 +16,16 @@ std::string SolidCorrection::describe() const {
 
 SolidCorrection updated_correction(const SolidCorrection& previous, const objectives::SolidSegmentCheck& check,
                                    const objectives::ArmMeasures& searched, double working_pressure_kPa) {
-  if (check.path != fem::PathOutcome::completed && check.path != fem::PathOutcome::limit_point) return previous;
+  if (!fem::is_answer(check.path)) return previous;
   const objectives::SegmentMeasures& rod = searched.segments.at(static_cast<std::size_t>(check.segment - 1));
   SolidCorrection out = previous;
   ++out.checks;
   // β_θ: the newest check's, the search model's bending at the same pressure as the 3D path's.
   const double rod_deg = objectives::bending_at_pressure(rod, check.reached_pressure_kPa);
   if (rod_deg > 1e-6 && check.bending_deg > 0) out.bending_factor = check.bending_deg / rod_deg;
-  // β_u: only a limit point below the working pressure measures the 3D utilisation.
-  if (check.path == fem::PathOutcome::limit_point && check.reached_pressure_kPa > 0 && rod.burst_utilisation > 1e-6) {
+  // β_u: only a failure below the working pressure (a limit point, or a named material or element
+  // failure) measures the 3D utilisation.
+  if (check.path != fem::PathOutcome::completed && check.reached_pressure_kPa > 0 && rod.burst_utilisation > 1e-6) {
     const double u_3d = working_pressure_kPa / check.reached_pressure_kPa;
     out.burst_factor = std::max(previous.burst_factor, u_3d / rod.burst_utilisation);
   }

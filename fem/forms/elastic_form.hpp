@@ -50,11 +50,27 @@ struct ElementResult {
   double mean_principal_stretch = 1.0, mean_principal_cauchy_MPa = 0.0, mean_principal_log_strain = 0.0;
 };
 
+/// Where a state asks more of a law than it can give: the Gauss points at which the law is not
+/// Drucker stable (dτ:dε ≤ 0 for some isochoric strain increment, fem/materials/drucker_stability.hpp)
+/// at the isochoric principal stretches λ̂_a = λ_a J^(-1/3) the point sees. Only the laws with the
+/// isochoric/volumetric split (the silicones) are checked: the stiff rings stay near rest.
+struct MaterialInstability {
+  int unstable_points = 0;  // 0: every point is stable
+  int checked_points = 0;   // the Gauss points of the split laws' parts
+  int element = -1;         // of the unstable point with the largest stretch
+  int node = -1;            // a corner node of that element, to say where it is
+  double max_stretch = 1.0, min_stretch = 1.0;  // λ̂ there, largest and smallest
+  bool found() const { return unstable_points > 0; }
+};
+
 /// The strain-energy form of a solid body, with its post-processing.
 class ElasticForm : public Form {
  public:
   std::string name() const override { return "elastic"; }
   virtual std::vector<ElementResult> element_results(const Vector& x) const = 0;
+  virtual MaterialInstability material_instability(const Vector& x) const = 0;
+  /// A corner node of element e, to say where it is.
+  virtual int element_corner_node(int e) const = 0;
   /// Name of the element formulation in use (for reports).
   virtual std::string element_name() const = 0;
 };

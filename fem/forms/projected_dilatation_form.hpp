@@ -23,6 +23,7 @@
 
 #include "fem/core/parallel.hpp"
 #include "fem/forms/elastic_form.hpp"
+#include "fem/materials/drucker_stability.hpp"
 #include "fem/materials/principal_stress.hpp"
 
 namespace softarm::fem {
@@ -189,6 +190,35 @@ class ProjectedDilatationForm final : public ElasticForm {
       }
     }
     return results;
+  }
+
+  int element_corner_node(int e) const override { return mesh_.element(e)[0]; }
+
+  MaterialInstability material_instability(const Vector& x) const override {
+    MaterialInstability out;
+    for (int e = 0; e < mesh_.num_elements(); ++e) {
+      const HyperelasticLaw& law = *materials_[mesh_.part[e]].law;
+      if (!law.has_volumetric_split()) continue;
+      const auto xe = nodal(x, e);
+      for (int q = 0; q < E::kGaussPoints; ++q) {
+        const Mat3 F = deformation_gradient<E>(reference_[e][q], xe);
+        const double J = F.determinant();
+        ++out.checked_points;
+        if (!(J > 0.0)) continue;  // an inverted point is the element's failure, not the law's
+        Eigen::SelfAdjointEigenSolver<Mat3> eig(F.transpose() * F, Eigen::EigenvaluesOnly);
+        // Isochoric log strains ε_a = ln(λ_a J^(-1/3)), summing to zero: the state of w(ε1, ε2).
+        const Eigen::Vector3d eps = 0.5 * eig.eigenvalues().array().log() - std::log(J) / 3.0;
+        if (drucker_stable_at(law, eps[2], eps[0])) continue;
+        const double stretch = std::exp(eps[2]);
+        if (++out.unstable_points == 1 || stretch > out.max_stretch) {
+          out.element = e;
+          out.node = mesh_.element(e)[0];
+          out.max_stretch = stretch;
+          out.min_stretch = std::exp(eps[0]);
+        }
+      }
+    }
+    return out;
   }
 
  private:

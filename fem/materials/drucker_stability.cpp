@@ -69,9 +69,13 @@ Eigen::Matrix2d drucker_matrix(const HyperelasticLaw& law, double eps1, double e
   return incompressible_energy(law, eps1, eps2).h.topLeftCorner<2, 2>();
 }
 
+bool drucker_stable_at(const HyperelasticLaw& law, double eps1, double eps2) {
+  return positive_definite(drucker_matrix(law, eps1, eps2));
+}
+
 bool drucker_stable(const HyperelasticLaw& law, LoadingMode mode, double lambda) {
   const Eigen::Vector2d e = path_log_strains(mode, lambda);
-  return positive_definite(drucker_matrix(law, e[0], e[1]));
+  return drucker_stable_at(law, e[0], e[1]);
 }
 
 double nominal_stress(const HyperelasticLaw& law, LoadingMode mode, double lambda) {

@@ -38,6 +38,10 @@ Jet3 incompressible_energy(const HyperelasticLaw& law, double eps1, double eps2)
 /// 2×2 Drucker matrix H = ∂²w/∂ε∂ε at (ε1, ε2).
 Eigen::Matrix2d drucker_matrix(const HyperelasticLaw& law, double eps1, double eps2);
 
+/// H positive definite at (ε1, ε2) (false also when H is not finite): the law is Drucker stable at
+/// the isochoric principal stretches (e^ε1, e^ε2, e^(−ε1−ε2)), whichever state they come from.
+bool drucker_stable_at(const HyperelasticLaw& law, double eps1, double eps2);
+
 /// H positive definite on the path at λ (false also when H is not finite).
 bool drucker_stable(const HyperelasticLaw& law, LoadingMode mode, double lambda);
 

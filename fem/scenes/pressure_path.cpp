@@ -75,6 +75,13 @@ std::string node_location(const Vector& X, int node, int dimension) {
   const double r = std::hypot(X[3 * node], X[3 * node + 1]);
   return "z = " + fmt(X[3 * node + 2], 3) + " mm, " + fmt(r, 3) + " mm from the axis";
 }
+
+/// The body's strain-energy form, which knows its elements and laws (null: the problem has none).
+const ElasticForm* elastic_form_of(const EnergyProblem& problem) {
+  for (const auto& form : problem.forms())
+    if (const auto* elastic = dynamic_cast<const ElasticForm*>(form.get())) return elastic;
+  return nullptr;
+}
 }  // namespace
 
 PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::vector<const ChamberPressureForm*>& chambers,
@@ -303,6 +310,34 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
       out.diagnosis = " Volume control from there: " + vc.message + ".";
     }
   }
+  // A material failure first: the state reached asks the silicone's law for more than it can give
+  // (not Drucker stable: it softens under further strain there), whatever the tangent shows.
+  const ElasticForm* body = elastic_form_of(problem);
+  if (body) out.material = body->material_instability(x);
+  if (out.material.found()) {
+    out.outcome = PathOutcome::material_instability;
+    const std::string where =
+        spec.node_dimension > 0
+            ? " (" + node_location(problem.reference_positions(), out.material.node, spec.node_dimension) + ")"
+            : "";
+    // A few points at a corner of the section, where the strain is singular, start to fail at a
+    // pressure that falls as the mesh is refined (docs/model.md, Named failures).
+    const bool at_a_point = out.material.unstable_points * 100 < out.material.checked_points;
+    out.diagnosis = "material instability at " + fmt(out.reached_pressure_kPa) + " kPa: at the state reached the " +
+                    "silicone's law is not Drucker stable at " + std::to_string(out.material.unstable_points) + " of " +
+                    std::to_string(out.material.checked_points) + " Gauss points, at isochoric principal stretches up to " +
+                    fmt(out.material.max_stretch) + " (the smallest there " + fmt(out.material.min_stretch) +
+                    ") in element " + std::to_string(out.material.element) + where +
+                    ": the material softens under further strain, and pressure control stopped there (" +
+                    to_string(out.path.failure) + ", dp/dV " + fmt(100 * ratio, 3) + " % of its initial value). " +
+                    (at_a_point ? "Where so few points fail, the strain concentrates there (a corner of the section) "
+                                  "and this pressure falls with a finer mesh: the finding is the law's range, not this "
+                                  "pressure. "
+                                : "") +
+                    "`softarm material check` prints the law's stable stretches; a law fitted over a wider range of "
+                    "stretch may carry the design further." + out.diagnosis;
+    return out;
+  }
   // A stall with the loaded volume still stiff: is the tangent's lowest mode collapsing somewhere?
   std::string mode_note;
   if (!flattening && spec.limit.check_lowest_mode && out.history.size() >= 2) {
@@ -392,6 +427,22 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
                     " N/mm per kPa: the square root of the distance to the fold). The path folds there, an instability "
                     "the loaded volume barely shows (dp/dV " + fmt(100 * ratio, 3) +
                     " % of its initial value): the burst pressure of this design." + mode_note + volume_note;
+  } else if (out.path.failure == Failure::inverted_element && out.path.failed_element >= 0 && body) {
+    // No limit point near, but the step can be cut no further without turning an element inside out:
+    // an element failure, named with its place, not a stall.
+    out.outcome = PathOutcome::element_inversion;
+    out.inverted_element = out.path.failed_element;
+    const std::string where =
+        spec.node_dimension > 0 ? " (" + node_location(problem.reference_positions(),
+                                                       body->element_corner_node(out.inverted_element),
+                                                       spec.node_dimension) + ")"
+                                : "";
+    out.diagnosis = "element inversion at " + fmt(last.pressure_kPa) + " kPa: every step beyond it, down to the " +
+                    "smallest increment, turns element " + std::to_string(out.inverted_element) + where +
+                    " inside out (" + out.path.message + ") while dp/dV is " + fmt(100 * ratio, 3) +
+                    " % of its initial value, so no limit point is near: the mesh cannot follow the deformation "
+                    "there (a fold or a crease of the silicone, or a contact the model does not have). A finer mesh "
+                    "(mesh.level) may carry it further." + mode_note + volume_note;
   } else {
     out.outcome = PathOutcome::stalled;
     // Well above the threshold the path is plainly not at a limit point; close to it,

@@ -10,19 +10,59 @@
 // lowest eigenvalue has collapsed there (a local instability that the loaded
 // volume barely shows: LimitPointSettings::check_lowest_mode). The two are
 // reported differently: a stall is never passed off as a physical limit.
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "fem/forms/chamber_pressure_form.hpp"
+#include "fem/forms/elastic_form.hpp"
 #include "fem/scenes/pressure_state.hpp"
 #include "fem/solver/load_stepper.hpp"
 
 namespace softarm::fem {
 
-enum class PathOutcome { completed, limit_point, stalled };
+/// How a pressure path ended. Every outcome but `stalled` is an answer about the design: the requested
+/// pressure reached; a limit point (its burst pressure); the silicone's law loses Drucker stability
+/// at the state reached (a material failure); an element that every step, down to the smallest,
+/// turns inside out (where the mesh can no longer follow the body). A stall is numerical only: the
+/// path stopped and none of these explains it. (New values go last: cached cell results store the
+/// number.)
+enum class PathOutcome { completed, limit_point, stalled, material_instability, element_inversion };
 inline const char* to_string(PathOutcome o) {
-  return o == PathOutcome::completed ? "completed" : o == PathOutcome::limit_point ? "limit_point" : "stalled";
+  switch (o) {
+    case PathOutcome::completed: return "completed";
+    case PathOutcome::limit_point: return "limit_point";
+    case PathOutcome::stalled: return "stalled";
+    case PathOutcome::material_instability: return "material_instability";
+    case PathOutcome::element_inversion: return "element_inversion";
+  }
+  return "unknown";
+}
+inline constexpr PathOutcome all_path_outcomes[] = {PathOutcome::completed, PathOutcome::limit_point, PathOutcome::stalled,
+                                                     PathOutcome::material_instability, PathOutcome::element_inversion};
+/// The outcome in words, for reports ("limit point", "material instability", ...).
+inline std::string in_words(PathOutcome o) {
+  std::string words = to_string(o);
+  std::replace(words.begin(), words.end(), '_', ' ');
+  return words;
+}
+/// The outcome named `name` by to_string (completed if none is).
+inline PathOutcome path_outcome_named(const std::string& name) {
+  for (const PathOutcome o : all_path_outcomes)
+    if (name == to_string(o)) return o;
+  return PathOutcome::completed;
+}
+/// Whether the path ended in an answer a designer can use (everything but a numerical stall).
+inline bool is_answer(PathOutcome o) { return o != PathOutcome::stalled; }
+/// Whether the path ended in a failure of the design: a limit point or a named material or element failure.
+inline bool is_failure(PathOutcome o) { return is_answer(o) && o != PathOutcome::completed; }
+/// The outcome of a model that stopped short because its parts' paths did (a rod on cells): the
+/// first failure of a part (limit point, material, element), else a stall.
+inline PathOutcome outcome_of_parts(const std::vector<PathOutcome>& parts) {
+  for (const PathOutcome o : parts)
+    if (is_failure(o)) return o;
+  return PathOutcome::stalled;
 }
 
 /// How a limit point was found: traced past the pressure maximum by chamber-volume control; where
@@ -77,6 +117,8 @@ struct PressurePathResult {
   double estimated_limit_pressure_kPa = 0.0;  // peak of p(V) when a limit point is found: traced past by
                                               // volume control, or extrapolated from the last states
   LimitKind limit_kind = LimitKind::none;     // with outcome limit_point: how it was found
+  MaterialInstability material;  // with outcome material_instability: where the law is unstable at the state reached
+  int inverted_element = -1;     // with outcome element_inversion: the element the last step turned inside out
   PathResult path;
   /// With a checkpoint: the converged states taken from an earlier run's log (0: started
   /// from rest), and why an existing log was not resumed ("" if it was, or there was none).

@@ -192,9 +192,7 @@ SplCellRodResult pose_spl_cell_rod(const SplCells& cells, const std::vector<doub
   out.rod_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.converged = out.curve.size() == levels.size();
   out.reached_level = out.curve.empty() ? 0.0 : out.curve.back().load_fraction;
-  out.outcome = out.converged ? PathOutcome::completed : PathOutcome::stalled;
-  if (!out.converged && std::count(cells.outcomes.begin(), cells.outcomes.end(), PathOutcome::limit_point) > 0)
-    out.outcome = PathOutcome::limit_point;
+  out.outcome = out.converged ? PathOutcome::completed : outcome_of_parts(cells.outcomes);
   if (last.ok)
     for (int n = 1; n <= 3; ++n) {
       const std::string segment = "segment " + std::to_string(n);

@@ -69,7 +69,7 @@ struct SplCellRodResult {
   std::vector<SplJoint> joints;       // at the last level reached, named and ordered as the 3D scene's
   bool converged = false;             // every output level reached
   std::string diagnosis;              // why not
-  PathOutcome outcome = PathOutcome::stalled;  // limit_point where a cell passed its pressure maximum
+  PathOutcome outcome = PathOutcome::stalled;  // a cell's failure (limit point, material, element) where one stopped it
   double reached_level = 0;
   double mass_kg = 0;                 // the rod's (cells' smeared mass and connectors)
   double rod_seconds = 0;

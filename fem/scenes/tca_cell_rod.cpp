@@ -176,12 +176,11 @@ CellRodTcaResult pose_cell_rod_tca(const TcaSceneSpec& spec, const TcaRodCells& 
   out.rod_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.converged = out.curve.size() == pressures.size();
   out.reached_pressure_kPa = out.curve.empty() ? 0.0 : out.curve.back().pressure_kPa;
-  // Short of the last output: a cell's limit point is a limit point of the rod, else a stall.
-  if (out.converged) out.outcome = PathOutcome::completed;
-  for (const auto& c : cells)
-    if (!out.converged && c.path.outcome == PathOutcome::limit_point) out.outcome = PathOutcome::limit_point;
-  for (const auto& e : ends)
-    if (!out.converged && e.path.outcome == PathOutcome::limit_point) out.outcome = PathOutcome::limit_point;
+  // Short of the last output: a cell's failure (limit point, material, element) is the rod's, else a stall.
+  std::vector<PathOutcome> parts;
+  for (const auto& c : cells) parts.push_back(c.path.outcome);
+  for (const auto& e : ends) parts.push_back(e.path.outcome);
+  out.outcome = out.converged ? PathOutcome::completed : outcome_of_parts(parts);
   out.target_pressure_kPa = pressure_at_bending(states, spec.target_bending_deg);
   return out;
 }

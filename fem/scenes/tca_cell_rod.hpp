@@ -30,8 +30,9 @@ struct CellRodTcaResult {
   std::optional<double> target_pressure_kPa;   // where the bending reaches spec.target_bending_deg
   bool converged = false;                      // every output reached
   std::string diagnosis;                       // why not
-  /// limit_point where a cell's pressure passed a maximum (a wall ballooning in every pitch alike),
-  /// stalled where a cell's solver stopped, else completed; the rod reached reached_pressure_kPa.
+  /// A cell's failure where one stopped the rod (limit_point where its pressure passed a maximum, a
+  /// wall ballooning in every pitch alike; material_instability; element_inversion), stalled where a
+  /// cell's solver stopped, else completed; the rod reached reached_pressure_kPa.
   PathOutcome outcome = PathOutcome::completed;
   double reached_pressure_kPa = 0;
   int cell_dofs = 0;                           // of one cell

@@ -80,6 +80,7 @@ PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolve
       if (!report.converged) {
         result.failure = report.failure;
         result.message = report.message;
+        result.failed_element = report.failed_element;
         failed_from_prediction = predict;
         if (!predict) return false;  // the plain start failed too: nothing else to retry
         // Newton met only indefinite tangents: there is no stable equilibrium near this load
@@ -142,6 +143,7 @@ PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolve
   result.completed = true;
   result.failure = Failure::none;
   result.message.clear();
+  result.failed_element = -1;
   return result;
 }
 

@@ -45,6 +45,7 @@ struct PathResult {
   double reached_level = 0.0;       // last converged λ
   Failure failure = Failure::none;  // last failure when not completed
   std::string message;
+  int failed_element = -1;  // with inverted_element: the element
   PathStatistics stats;
 };
 

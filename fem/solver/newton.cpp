@@ -37,6 +37,7 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
   Evaluation cur = problem.evaluate(x, true, true);
   if (!cur.status.ok) {
     report.failure = Failure::inverted_element;
+    report.failed_element = cur.status.element;
     report.message = cur.status.reason + " at element " + std::to_string(cur.status.element);
     return report;
   }
@@ -154,8 +155,10 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
     }
     if (!accepted) {
       report.failure = trial.status.ok ? Failure::line_search_failed : Failure::inverted_element;
+      report.failed_element = trial.status.ok ? -1 : trial.status.element;
       report.message = trial.status.ok ? "line search found no decrease along the Newton direction"
-                                       : trial.status.reason + " for every step length tried";
+                                       : trial.status.reason + " at element " + std::to_string(trial.status.element) +
+                                             " for every step length tried";
       break;
     }
     x = std::move(x_trial);

@@ -80,6 +80,7 @@ struct NewtonReport {
   bool converged = false;
   Failure failure = Failure::none;
   std::string message;
+  int failed_element = -1;  // with inverted_element: the first element turned inside out
   int iterations = 0;
   bool tangent_positive_definite = true;  // at the last factorisation
   std::vector<NewtonRow> rows;
