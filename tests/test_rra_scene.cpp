@@ -214,12 +214,16 @@ TEST_CASE("a silicone past its Drucker stability ends in a material instability,
   auto spec = thesis_rra(1);
   spec.path.max_pressure_kPa = 40.0;
   spec.path.output_pressures_kPa = {10.0, 20.0, 30.0, 40.0};
+  // Fewer cut-backs at the stop, and no volume control after it (which cannot pass a softening law
+  // either): the test's cost, not where the path stops.
+  spec.path.steps.min_increment = 1e-2;
+  spec.path.limit.follow_with_volume_control = false;
   spec.tube_material = soft(-0.01);
   const auto r = run_rra_scene(spec);
   INFO(r.path.diagnosis);
   REQUIRE(r.path.outcome == PathOutcome::material_instability);
   CHECK(is_answer(r.path.outcome));
-  CHECK(r.path.reached_pressure_kPa > 10.0);  // 35.06 kPa at mesh level 1 (docs/model.md)
+  CHECK(r.path.reached_pressure_kPa > 10.0);  // 34.84 kPa; 35.06 with the default steps (docs/model.md)
   CHECK(r.path.reached_pressure_kPa < 40.0);
   CHECK(r.path.material.unstable_points >= 1);
   CHECK(r.path.material.max_stretch > 1.36);  // beyond every path's stable stretch but the uniaxial one's
