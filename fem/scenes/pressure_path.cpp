@@ -82,6 +82,202 @@ const ElasticForm* elastic_form_of(const EnergyProblem& problem) {
     if (const auto* elastic = dynamic_cast<const ElasticForm*>(form.get())) return elastic;
   return nullptr;
 }
+
+/// What the diagnosis of a stop reads: the path's last pressure-controlled state and the tools to
+/// look at the tangent there.
+struct StopContext {
+  const EnergyProblem& problem;
+  const ElasticForm* body;  // the solid's strain energy (null: none)
+  const PressurePathSpec& spec;
+  LinearSolver& solver;
+  LoadState& load;
+  const std::function<void(double)>& set_pressures;
+  const Vector& x_rest;   // the reference of the lowest-mode check
+  const Vector& x_stall;  // the last converged state under pressure control
+  const PressureState& last;
+  double ratio;           // dp/dV there over its initial value
+  bool flattened, flattening;
+};
+
+/// A material failure first: the state reached, x, asks the silicone's law for more than it can
+/// give (not Drucker stable: it softens under further strain there), whatever the tangent shows.
+bool named_material_failure(const StopContext& c, const Vector& x, PressurePathResult& out) {
+  const EnergyProblem& problem = c.problem;
+  const PressurePathSpec& spec = c.spec;
+  const double ratio = c.ratio;
+  if (c.body) out.material = c.body->material_instability(x);
+  if (out.material.found()) {
+    out.outcome = PathOutcome::material_instability;
+    const std::string where =
+        spec.node_dimension > 0
+            ? " (" + node_location(problem.reference_positions(), out.material.node, spec.node_dimension) + ")"
+            : "";
+    // A few points at a corner of the section, where the strain is singular, start to fail at a
+    // pressure that falls as the mesh is refined (docs/model.md, Named failures).
+    const bool at_a_point = out.material.unstable_points * 100 < out.material.checked_points;
+    out.diagnosis = "material instability at " + fmt(out.reached_pressure_kPa) + " kPa: at the state reached the " +
+                    "silicone's law is not Drucker stable at " + std::to_string(out.material.unstable_points) + " of " +
+                    std::to_string(out.material.checked_points) + " Gauss points, at isochoric principal stretches up to " +
+                    fmt(out.material.max_stretch) + " (the smallest there " + fmt(out.material.min_stretch) +
+                    ") in element " + std::to_string(out.material.element) + where +
+                    ": the material softens under further strain, and pressure control stopped there (" +
+                    to_string(out.path.failure) + ", dp/dV " + fmt(100 * ratio, 3) + " % of its initial value). " +
+                    (at_a_point ? "Where so few points fail, the strain concentrates there (a corner of the section) "
+                                  "and this pressure falls with a finer mesh: the finding is the law's range, not this "
+                                  "pressure. "
+                                : "") +
+                    "`softarm material check` prints the law's stable stretches; a law fitted over a wider range of "
+                    "stretch may carry the design further." + out.diagnosis;
+    return true;
+  }
+  return false;
+}
+
+/// The tangent's lowest eigenvalue at the stall against its value at rest (a stall with the loaded
+/// volume still stiff: is the lowest mode collapsing somewhere?), into out and in words.
+std::string lowest_mode_note(const StopContext& c, PressurePathResult& out) {
+  const EnergyProblem& problem = c.problem;
+  const PressurePathSpec& spec = c.spec;
+  const PressureState& last = c.last;
+  LinearSolver& solver = c.solver;
+  LoadState& load = c.load;
+  const auto& set_pressures = c.set_pressures;
+  const Vector& x_stall = c.x_stall;
+  const Vector& x_rest = c.x_rest;
+  std::string mode_note;
+  if (spec.limit.check_lowest_mode && out.history.size() >= 2) {
+    // Only now, past volume control (which settles a limit point without it); its loads are restored after.
+    const double stall_level = last.pressure_kPa / spec.max_pressure_kPa, dirichlet = load.dirichlet_scale;
+    set_pressures(stall_level);
+    const LowestModes now = lowest_mode_at(problem, solver, x_stall);
+    set_pressures(0.0);
+    load.dirichlet_scale = 0.0;
+    const LowestModes rest = lowest_mode_at(problem, solver, x_rest);
+    set_pressures(out.reached_pressure_kPa / spec.max_pressure_kPa);
+    load.dirichlet_scale = dirichlet;
+    if (rest.eigenvalues[0] > 0) {
+      out.lowest_eigenvalue_ratio = std::max(0.0, now.eigenvalues[0] / rest.eigenvalues[0]);
+      mode_note = " The tangent's lowest eigenvalue is " + fmt(100 * out.lowest_eigenvalue_ratio, 3) +
+                  " % of its value at rest";
+      if (spec.node_dimension > 0 && now.eigenvalues[0] > 0) {
+        const ModeExtent e = mode_extent(now.modes[0], spec.node_dimension);
+        out.lowest_mode_participation = e.participation;
+        mode_note += "; its mode moves " + fmt(100 * e.participation, 2) + " % of the nodes, most at " +
+                     node_location(problem.reference_positions(), e.peak_node, spec.node_dimension);
+      }
+      // Sufficient, not necessary: a stiff local mode (a wall between two rings) can be failing while
+      // a softer global one (the 3CA's bending) is still the lowest.
+      if (out.lowest_eigenvalue_ratio >= spec.limit.lowest_mode_fraction)
+        mode_note += ", so the last converged state is stable in its softest mode";
+      mode_note += ".";
+    }
+  }
+  return mode_note;
+}
+
+/// Names why a path stopped short where volume control did not settle it: a material failure, a
+/// limit point (dp/dV, the lowest mode, a fold just ahead), an inverted element, or a stall.
+void name_the_stop(const StopContext& c, const Vector& x, PressurePathResult& out) {
+  if (named_material_failure(c, x, out)) return;
+  const EnergyProblem& problem = c.problem;
+  const PressurePathSpec& spec = c.spec;
+  const PressureState& last = c.last;
+  const double ratio = c.ratio;
+  LinearSolver& solver = c.solver;
+  const auto& set_pressures = c.set_pressures;
+  const Vector& x_stall = c.x_stall;
+  const bool flattened = c.flattened, flattening = c.flattening;
+  const ElasticForm* body = c.body;
+  const std::string mode_note = c.flattening ? std::string() : lowest_mode_note(c, out);
+  const bool local_instability = out.lowest_eigenvalue_ratio > 0 && out.lowest_eigenvalue_ratio < spec.limit.lowest_mode_fraction;
+  const std::string volume_note = out.diagnosis;
+  // A fold that neither dp/dV nor the lowest eigenvalue shows: one of the few lowest eigenvalues
+  // falling to zero just ahead (fem/solver/fold_estimate.hpp), at the last converged state.
+  FoldEstimate fold;
+  if (!flattened && !local_instability && spec.limit.check_lowest_mode && spec.limit.fold_margin > 0 &&
+      out.history.size() >= 2) {
+    fold = estimate_fold(problem, solver, x_stall, last.pressure_kPa / spec.max_pressure_kPa, set_pressures,
+                         spec.limit.fold_modes);
+    set_pressures(out.reached_pressure_kPa / spec.max_pressure_kPa);
+  }
+  const double fold_kPa = std::max(fold.load * spec.max_pressure_kPa, out.reached_pressure_kPa);
+  const bool fold_ahead = fold.found && fold_kPa <= last.pressure_kPa * (1 + spec.limit.fold_margin);
+  if (flattened) {
+    out.outcome = PathOutcome::limit_point;
+    out.limit_kind = LimitKind::pressure_volume;
+    out.estimated_limit_pressure_kPa = last.pressure_kPa;
+    // Peak of the quadratic p(V) through the last two states' slopes.
+    if (out.history.size() >= 2) {
+      const PressureState& prev = out.history[out.history.size() - 2];
+      const double dV = last.chamber_volume_mm3 - prev.chamber_volume_mm3;
+      const double c = dV != 0.0 ? (last.pv_stiffness_kPa_per_mm3 - prev.pv_stiffness_kPa_per_mm3) / dV : 0.0;
+      if (c < 0.0 && last.pv_stiffness_kPa_per_mm3 > 0.0)
+        out.estimated_limit_pressure_kPa = last.pressure_kPa - last.pv_stiffness_kPa_per_mm3 * last.pv_stiffness_kPa_per_mm3 / (2 * c);
+    }
+    // Volume control may have climbed past the last pressure-controlled state: the peak is no lower.
+    out.estimated_limit_pressure_kPa = std::max(out.estimated_limit_pressure_kPa, out.reached_pressure_kPa);
+    out.diagnosis = "limit point (ballooning): the pressure-volume curve flattens at " + fmt(last.pressure_kPa) +
+                    " kPa (dp/dV fell to " + fmt(100 * ratio, 3) + " % of its initial value" +
+                    (last.tangent_positive_definite ? "" : ", tangent no longer positive definite") +
+                    "); estimated peak pressure " + fmt(out.estimated_limit_pressure_kPa) +
+                    " kPa. Pressure control cannot pass it; this is the burst mode of this design." + volume_note;
+  } else if (local_instability) {
+    out.outcome = PathOutcome::limit_point;
+    out.limit_kind = LimitKind::lowest_mode;
+    out.estimated_limit_pressure_kPa = last.pressure_kPa;
+    out.diagnosis = "local limit point at " + fmt(last.pressure_kPa) + " kPa: pressure control stopped (" +
+                    to_string(out.path.failure) + ") where the tangent's lowest mode has lost almost all its "
+                    "stiffness, while dp/dV of the loaded volume, " + fmt(100 * ratio, 3) +
+                    " % of its initial value, is above the limit-point threshold: an instability the loaded volume "
+                    "barely shows (in a 3CA, a chamber wall ballooning between two rings). The burst pressure is at "
+                    "or just above this one." + mode_note;
+  } else if (fold_ahead) {
+    out.outcome = PathOutcome::limit_point;
+    out.limit_kind = LimitKind::fold;
+    out.estimated_limit_pressure_kPa = fold_kPa;
+    std::string where;
+    if (spec.node_dimension > 0) {
+      const ModeExtent e = mode_extent(fold.mode, spec.node_dimension);
+      where = ", a mode that moves " + fmt(100 * e.participation, 2) + " % of the nodes, most at " +
+              node_location(problem.reference_positions(), e.peak_node, spec.node_dimension);
+    }
+    out.diagnosis = "local limit point (fold) at " + fmt(fold_kPa) + " kPa: pressure control stopped at " +
+                    fmt(last.pressure_kPa) + " kPa (" + to_string(out.path.failure) + ") where the tangent's eigenvalue " +
+                    std::to_string(fold.mode_index + 1) + " of " + std::to_string(fold.eigenvalues_computed) + where +
+                    ", falls to zero " + fmt(fold_kPa - last.pressure_kPa, 3) + " kPa ahead (" + fmt(fold.eigenvalue, 3) +
+                    " N/mm, falling by " + fmt(-fold.rate / spec.max_pressure_kPa, 3) +
+                    " N/mm per kPa: the square root of the distance to the fold). The path folds there, an instability "
+                    "the loaded volume barely shows (dp/dV " + fmt(100 * ratio, 3) +
+                    " % of its initial value): the burst pressure of this design." + mode_note + volume_note;
+  } else if (out.path.failure == Failure::inverted_element && out.path.failed_element >= 0 && body) {
+    // No limit point near, but the step can be cut no further without turning an element inside out:
+    // an element failure, named with its place, not a stall.
+    out.outcome = PathOutcome::element_inversion;
+    out.inverted_element = out.path.failed_element;
+    const std::string where =
+        spec.node_dimension > 0 ? " (" + node_location(problem.reference_positions(),
+                                                       body->element_corner_node(out.inverted_element),
+                                                       spec.node_dimension) + ")"
+                                : "";
+    out.diagnosis = "element inversion at " + fmt(last.pressure_kPa) + " kPa: every step beyond it, down to the " +
+                    "smallest increment, turns element " + std::to_string(out.inverted_element) + where +
+                    " inside out (" + out.path.message + ") while dp/dV is " + fmt(100 * ratio, 3) +
+                    " % of its initial value, so no limit point is near: the mesh cannot follow the deformation "
+                    "there (a fold or a crease of the silicone, or a contact the model does not have). A finer mesh "
+                    "(mesh.level) may carry it further." + mode_note + volume_note;
+  } else {
+    out.outcome = PathOutcome::stalled;
+    // Well above the threshold the path is plainly not at a limit point; close to it,
+    // the curve is flattening and a limit point may lie just ahead.
+    out.diagnosis = "solver stalled at " + fmt(last.pressure_kPa) + " kPa (" + to_string(out.path.failure) + ": " +
+                    out.path.message + ") while dp/dV is " + fmt(100 * ratio, 3) + " % of its initial value" +
+                    (flattening ? ": the pressure-volume curve is flattening and a limit point (ballooning) may lie "
+                                  "just ahead, but none was reached. "
+                                : ", so this is not a limit point. ") +
+                    "Retry with a finer mesh, a smaller solver.initial_increment_fraction or more Newton iterations." +
+                    mode_note + volume_note;
+  }
+}
 }  // namespace
 
 PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::vector<const ChamberPressureForm*>& chambers,
@@ -93,7 +289,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
   if (chamber.fractions.empty()) chamber.fractions.assign(chambers.size(), 1.0);
   if (chamber.fractions.size() != chambers.size())
     throw std::logic_error("run_pressure_path: one pressure fraction per chamber");
-  const auto set_pressures = [&](double level) {
+  const std::function<void(double)> set_pressures = [&](double level) {
     for (std::size_t i = 0; i < chambers.size(); ++i) {
       const auto c = static_cast<std::size_t>(chambers[i]->chamber());
       if (load.chamber_pressure_MPa.size() <= c) load.chamber_pressure_MPa.resize(c + 1, 0.0);
@@ -310,151 +506,9 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
       out.diagnosis = " Volume control from there: " + vc.message + ".";
     }
   }
-  // A material failure first: the state reached asks the silicone's law for more than it can give
-  // (not Drucker stable: it softens under further strain there), whatever the tangent shows.
-  const ElasticForm* body = elastic_form_of(problem);
-  if (body) out.material = body->material_instability(x);
-  if (out.material.found()) {
-    out.outcome = PathOutcome::material_instability;
-    const std::string where =
-        spec.node_dimension > 0
-            ? " (" + node_location(problem.reference_positions(), out.material.node, spec.node_dimension) + ")"
-            : "";
-    // A few points at a corner of the section, where the strain is singular, start to fail at a
-    // pressure that falls as the mesh is refined (docs/model.md, Named failures).
-    const bool at_a_point = out.material.unstable_points * 100 < out.material.checked_points;
-    out.diagnosis = "material instability at " + fmt(out.reached_pressure_kPa) + " kPa: at the state reached the " +
-                    "silicone's law is not Drucker stable at " + std::to_string(out.material.unstable_points) + " of " +
-                    std::to_string(out.material.checked_points) + " Gauss points, at isochoric principal stretches up to " +
-                    fmt(out.material.max_stretch) + " (the smallest there " + fmt(out.material.min_stretch) +
-                    ") in element " + std::to_string(out.material.element) + where +
-                    ": the material softens under further strain, and pressure control stopped there (" +
-                    to_string(out.path.failure) + ", dp/dV " + fmt(100 * ratio, 3) + " % of its initial value). " +
-                    (at_a_point ? "Where so few points fail, the strain concentrates there (a corner of the section) "
-                                  "and this pressure falls with a finer mesh: the finding is the law's range, not this "
-                                  "pressure. "
-                                : "") +
-                    "`softarm material check` prints the law's stable stretches; a law fitted over a wider range of "
-                    "stretch may carry the design further." + out.diagnosis;
-    return out;
-  }
-  // A stall with the loaded volume still stiff: is the tangent's lowest mode collapsing somewhere?
-  std::string mode_note;
-  if (!flattening && spec.limit.check_lowest_mode && out.history.size() >= 2) {
-    // Only now, past volume control (which settles a limit point without it); its loads are restored after.
-    const double stall_level = last.pressure_kPa / spec.max_pressure_kPa, dirichlet = load.dirichlet_scale;
-    set_pressures(stall_level);
-    const LowestModes now = lowest_mode_at(problem, solver, x_stall);
-    set_pressures(0.0);
-    load.dirichlet_scale = 0.0;
-    const LowestModes rest = lowest_mode_at(problem, solver, x_rest);
-    set_pressures(out.reached_pressure_kPa / spec.max_pressure_kPa);
-    load.dirichlet_scale = dirichlet;
-    if (rest.eigenvalues[0] > 0) {
-      out.lowest_eigenvalue_ratio = std::max(0.0, now.eigenvalues[0] / rest.eigenvalues[0]);
-      mode_note = " The tangent's lowest eigenvalue is " + fmt(100 * out.lowest_eigenvalue_ratio, 3) +
-                  " % of its value at rest";
-      if (spec.node_dimension > 0 && now.eigenvalues[0] > 0) {
-        const ModeExtent e = mode_extent(now.modes[0], spec.node_dimension);
-        out.lowest_mode_participation = e.participation;
-        mode_note += "; its mode moves " + fmt(100 * e.participation, 2) + " % of the nodes, most at " +
-                     node_location(problem.reference_positions(), e.peak_node, spec.node_dimension);
-      }
-      // Sufficient, not necessary: a stiff local mode (a wall between two rings) can be failing while
-      // a softer global one (the 3CA's bending) is still the lowest.
-      if (out.lowest_eigenvalue_ratio >= spec.limit.lowest_mode_fraction)
-        mode_note += ", so the last converged state is stable in its softest mode";
-      mode_note += ".";
-    }
-  }
-  const bool local_instability = out.lowest_eigenvalue_ratio > 0 && out.lowest_eigenvalue_ratio < spec.limit.lowest_mode_fraction;
-  const std::string volume_note = out.diagnosis;
-  // A fold that neither dp/dV nor the lowest eigenvalue shows: one of the few lowest eigenvalues
-  // falling to zero just ahead (fem/solver/fold_estimate.hpp), at the last converged state.
-  FoldEstimate fold;
-  if (!flattened && !local_instability && spec.limit.check_lowest_mode && spec.limit.fold_margin > 0 &&
-      out.history.size() >= 2) {
-    fold = estimate_fold(problem, solver, x_stall, last.pressure_kPa / spec.max_pressure_kPa, set_pressures,
-                         spec.limit.fold_modes);
-    set_pressures(out.reached_pressure_kPa / spec.max_pressure_kPa);
-  }
-  const double fold_kPa = std::max(fold.load * spec.max_pressure_kPa, out.reached_pressure_kPa);
-  const bool fold_ahead = fold.found && fold_kPa <= last.pressure_kPa * (1 + spec.limit.fold_margin);
-  if (flattened) {
-    out.outcome = PathOutcome::limit_point;
-    out.limit_kind = LimitKind::pressure_volume;
-    out.estimated_limit_pressure_kPa = last.pressure_kPa;
-    // Peak of the quadratic p(V) through the last two states' slopes.
-    if (out.history.size() >= 2) {
-      const PressureState& prev = out.history[out.history.size() - 2];
-      const double dV = last.chamber_volume_mm3 - prev.chamber_volume_mm3;
-      const double c = dV != 0.0 ? (last.pv_stiffness_kPa_per_mm3 - prev.pv_stiffness_kPa_per_mm3) / dV : 0.0;
-      if (c < 0.0 && last.pv_stiffness_kPa_per_mm3 > 0.0)
-        out.estimated_limit_pressure_kPa = last.pressure_kPa - last.pv_stiffness_kPa_per_mm3 * last.pv_stiffness_kPa_per_mm3 / (2 * c);
-    }
-    // Volume control may have climbed past the last pressure-controlled state: the peak is no lower.
-    out.estimated_limit_pressure_kPa = std::max(out.estimated_limit_pressure_kPa, out.reached_pressure_kPa);
-    out.diagnosis = "limit point (ballooning): the pressure-volume curve flattens at " + fmt(last.pressure_kPa) +
-                    " kPa (dp/dV fell to " + fmt(100 * ratio, 3) + " % of its initial value" +
-                    (last.tangent_positive_definite ? "" : ", tangent no longer positive definite") +
-                    "); estimated peak pressure " + fmt(out.estimated_limit_pressure_kPa) +
-                    " kPa. Pressure control cannot pass it; this is the burst mode of this design." + volume_note;
-  } else if (local_instability) {
-    out.outcome = PathOutcome::limit_point;
-    out.limit_kind = LimitKind::lowest_mode;
-    out.estimated_limit_pressure_kPa = last.pressure_kPa;
-    out.diagnosis = "local limit point at " + fmt(last.pressure_kPa) + " kPa: pressure control stopped (" +
-                    to_string(out.path.failure) + ") where the tangent's lowest mode has lost almost all its "
-                    "stiffness, while dp/dV of the loaded volume, " + fmt(100 * ratio, 3) +
-                    " % of its initial value, is above the limit-point threshold: an instability the loaded volume "
-                    "barely shows (in a 3CA, a chamber wall ballooning between two rings). The burst pressure is at "
-                    "or just above this one." + mode_note;
-  } else if (fold_ahead) {
-    out.outcome = PathOutcome::limit_point;
-    out.limit_kind = LimitKind::fold;
-    out.estimated_limit_pressure_kPa = fold_kPa;
-    std::string where;
-    if (spec.node_dimension > 0) {
-      const ModeExtent e = mode_extent(fold.mode, spec.node_dimension);
-      where = ", a mode that moves " + fmt(100 * e.participation, 2) + " % of the nodes, most at " +
-              node_location(problem.reference_positions(), e.peak_node, spec.node_dimension);
-    }
-    out.diagnosis = "local limit point (fold) at " + fmt(fold_kPa) + " kPa: pressure control stopped at " +
-                    fmt(last.pressure_kPa) + " kPa (" + to_string(out.path.failure) + ") where the tangent's eigenvalue " +
-                    std::to_string(fold.mode_index + 1) + " of " + std::to_string(fold.eigenvalues_computed) + where +
-                    ", falls to zero " + fmt(fold_kPa - last.pressure_kPa, 3) + " kPa ahead (" + fmt(fold.eigenvalue, 3) +
-                    " N/mm, falling by " + fmt(-fold.rate / spec.max_pressure_kPa, 3) +
-                    " N/mm per kPa: the square root of the distance to the fold). The path folds there, an instability "
-                    "the loaded volume barely shows (dp/dV " + fmt(100 * ratio, 3) +
-                    " % of its initial value): the burst pressure of this design." + mode_note + volume_note;
-  } else if (out.path.failure == Failure::inverted_element && out.path.failed_element >= 0 && body) {
-    // No limit point near, but the step can be cut no further without turning an element inside out:
-    // an element failure, named with its place, not a stall.
-    out.outcome = PathOutcome::element_inversion;
-    out.inverted_element = out.path.failed_element;
-    const std::string where =
-        spec.node_dimension > 0 ? " (" + node_location(problem.reference_positions(),
-                                                       body->element_corner_node(out.inverted_element),
-                                                       spec.node_dimension) + ")"
-                                : "";
-    out.diagnosis = "element inversion at " + fmt(last.pressure_kPa) + " kPa: every step beyond it, down to the " +
-                    "smallest increment, turns element " + std::to_string(out.inverted_element) + where +
-                    " inside out (" + out.path.message + ") while dp/dV is " + fmt(100 * ratio, 3) +
-                    " % of its initial value, so no limit point is near: the mesh cannot follow the deformation "
-                    "there (a fold or a crease of the silicone, or a contact the model does not have). A finer mesh "
-                    "(mesh.level) may carry it further." + mode_note + volume_note;
-  } else {
-    out.outcome = PathOutcome::stalled;
-    // Well above the threshold the path is plainly not at a limit point; close to it,
-    // the curve is flattening and a limit point may lie just ahead.
-    out.diagnosis = "solver stalled at " + fmt(last.pressure_kPa) + " kPa (" + to_string(out.path.failure) + ": " +
-                    out.path.message + ") while dp/dV is " + fmt(100 * ratio, 3) + " % of its initial value" +
-                    (flattening ? ": the pressure-volume curve is flattening and a limit point (ballooning) may lie "
-                                  "just ahead, but none was reached. "
-                                : ", so this is not a limit point. ") +
-                    "Retry with a finer mesh, a smaller solver.initial_increment_fraction or more Newton iterations." +
-                    mode_note + volume_note;
-  }
+  const StopContext context{problem, elastic_form_of(problem), spec, solver, load, set_pressures, x_rest, x_stall,
+                            last, ratio, flattened, flattening};
+  name_the_stop(context, x, out);
   return out;
 }
 
