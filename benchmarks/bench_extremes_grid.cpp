@@ -8,18 +8,28 @@
 // count of each outcome per level (completed, limit point by how it was found, stalled, refused as
 // invalid input), the time, and each limit pressure's change from level 1 to level 2.
 //
-// Usage: bench_extremes_grid [--max-level L]
+// Every run is appended to a results file as it ends (one CSV row: level, case, outcome, how a
+// limit point was found, pressures, seconds); a rerun with the same file skips the runs it holds
+// and prints the tables from all of them, so an interrupted grid resumes where it stopped.
+// Runs go side by side, one thread each (--threads, SOFTARM_THREADS; the rows' order is the
+// grid's whatever the threads).
+//
+// Usage: bench_extremes_grid [--max-level L] [--results FILE] [--threads N]
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <map>
+#include <mutex>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "fem/core/input_error.hpp"
 #include "fem/core/json_reader.hpp"
+#include "fem/core/parallel.hpp"
 #include "fem/scenes/scene_config.hpp"
 
 using namespace softarm;
@@ -86,37 +96,87 @@ Outcome run(const Case& c, int level) {
   o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return o;
 }
+
+/// The results file: one row per run, "level,case,kind,found_by,reached_kPa,limit_kPa,seconds"
+/// (the case's name has no comma; the diagnosis is not kept).
+std::string row(int level, const Case& c, const Outcome& o) {
+  std::ostringstream r;
+  r.precision(10);
+  r << level << ',' << c.name() << ',' << o.kind << ',' << o.found_by << ',' << o.reached_kPa << ',' << o.limit_kPa
+    << ',' << o.seconds;
+  return r.str();
+}
+
+std::map<std::pair<int, std::string>, Outcome> read_results(const std::string& file) {
+  std::map<std::pair<int, std::string>, Outcome> done;
+  std::ifstream in(file);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+    if (f.size() != 7) continue;  // a torn last line: that run is done again
+    Outcome o;
+    o.kind = f[2];
+    o.found_by = f[3];
+    o.reached_kPa = std::stod(f[4]);
+    o.limit_kPa = std::stod(f[5]);
+    o.seconds = std::stod(f[6]);
+    done[{std::stoi(f[0]), f[1]}] = o;
+  }
+  return done;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
   int max_level = 2;
-  for (int i = 1; i + 1 < argc; ++i)
+  std::string results_file = "bench_extremes_grid.csv";
+  for (int i = 1; i + 1 < argc; ++i) {
     if (!std::strcmp(argv[i], "--max-level")) max_level = std::atoi(argv[++i]);
+    else if (!std::strcmp(argv[i], "--results")) results_file = argv[++i];
+    else if (!std::strcmp(argv[i], "--threads")) fem::set_thread_count(std::atoi(argv[++i]));
+  }
   const auto cases = grid();
-  std::vector<std::vector<Outcome>> results(max_level);
+  auto done = read_results(results_file);
+  std::ofstream results(results_file, std::ios::app);
+  std::mutex results_mutex;
+  std::printf("results: %s (%zu runs held; %d threads)\n", results_file.c_str(), done.size(), fem::thread_count());
+  std::vector<std::vector<Outcome>> outcomes(max_level, std::vector<Outcome>(cases.size()));
   for (int level = 1; level <= max_level; ++level) {
-    std::map<std::string, int> count;
-    double total = 0;
-    std::printf("\nRRA mesh level %d: %zu runs\n", level, cases.size());
-    for (const Case& c : cases) {
-      const Outcome o = run(c, level);
-      results[level - 1].push_back(o);
-      ++count[o.found_by.empty() ? o.kind : o.kind + " (" + o.found_by + ")"];
-      total += o.seconds;
+    std::vector<int> todo;
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      const auto held = done.find({level, cases[k].name()});
+      if (held != done.end()) outcomes[level - 1][k] = held->second;
+      else todo.push_back(static_cast<int>(k));
+    }
+    std::printf("\nRRA mesh level %d: %zu runs, %zu of them to do\n", level, cases.size(), todo.size());
+    std::fflush(stdout);
+    fem::parallel_tasks(static_cast<int>(todo.size()), [&](int i) {
+      const int k = todo[static_cast<std::size_t>(i)];
+      const Outcome o = run(cases[k], level);
+      const std::lock_guard<std::mutex> lock(results_mutex);
+      outcomes[level - 1][k] = o;
+      results << row(level, cases[k], o) << std::endl;  // flushed: a stop loses at most the runs under way
       if (o.kind != "completed")
-        std::printf("  %-52s %-11s reached %6.1f kPa  limit %6.1f kPa  %5.1f s  %.160s\n", c.name().c_str(),
+        std::printf("  %-52s %-11s reached %6.1f kPa  limit %6.1f kPa  %5.1f s  %.160s\n", cases[k].name().c_str(),
                     o.kind.c_str(), o.reached_kPa, o.limit_kPa, o.seconds, o.words.c_str());
       std::fflush(stdout);
+    });
+    std::map<std::string, int> count;
+    double total = 0;
+    for (const Outcome& o : outcomes[level - 1]) {
+      ++count[o.found_by.empty() ? o.kind : o.kind + " (" + o.found_by + ")"];
+      total += o.seconds;
     }
     std::printf("level %d outcomes:", level);
     for (const auto& [kind, n] : count) std::printf("  %s %d", kind.c_str(), n);
-    std::printf("  (%.1f s in all)\n", total);
+    std::printf("  (%.1f s of runs in all)\n", total);
   }
   if (max_level >= 2) {
     std::printf("\nlimit pressures, level 1 -> 2:\n");
     double worst = 0;
     for (std::size_t k = 0; k < cases.size(); ++k) {
-      const Outcome &a = results[0][k], &b = results[1][k];
+      const Outcome &a = outcomes[0][k], &b = outcomes[1][k];
       if (a.kind != "limit_point" && b.kind != "limit_point") continue;
       const double change = 100 * (a.limit_kPa - b.limit_kPa) / b.limit_kPa;
       if (std::isfinite(change)) worst = std::max(worst, std::abs(change));
