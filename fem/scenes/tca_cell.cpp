@@ -106,6 +106,11 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
   Eigen::Matrix2d T;
   T << 0, 1, -1, 0;
   const auto add_compliance = [&](TcaCellState& c, const Vector& xs) {
+    struct Clock {  // every return below counts
+      std::chrono::steady_clock::time_point t0;
+      double& total;
+      ~Clock() { total += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); }
+    } clock{std::chrono::steady_clock::now(), out.compliance_s};
     const Evaluation e = problem.evaluate(xs, false, true);
     LinearSolver& solver = compliance_solver;
     if (solver.factorize(e.hessian) != LinearSolver::Status::positive_definite) return;
@@ -171,6 +176,8 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
     });
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.assembly_s = problem.assembly_seconds();
+  out.evaluations = problem.evaluations();
   return out;
 }
 
