@@ -57,8 +57,7 @@ struct ElementResult {
 struct MaterialInstability {
   int unstable_points = 0;  // 0: every point is stable
   int checked_points = 0;   // the Gauss points of the split laws' parts
-  int element = -1;         // of the unstable point with the largest stretch
-  int node = -1;            // a corner node of that element, to say where it is
+  int element = -1;         // of the unstable point with the largest stretch (element_corner_node: where)
   double max_stretch = 1.0, min_stretch = 1.0;  // λ̂ there, largest and smallest
   bool found() const { return unstable_points > 0; }
 };

@@ -212,7 +212,6 @@ class ProjectedDilatationForm final : public ElasticForm {
         const double stretch = std::exp(eps[2]);
         if (++out.unstable_points == 1 || stretch > out.max_stretch) {
           out.element = e;
-          out.node = mesh_.element(e)[0];
           out.max_stretch = stretch;
           out.min_stretch = std::exp(eps[0]);
         }

@@ -110,7 +110,7 @@ bool named_material_failure(const StopContext& c, const Vector& x, PressurePathR
     out.outcome = PathOutcome::material_instability;
     const std::string where =
         spec.node_dimension > 0
-            ? " (" + node_location(problem.reference_positions(), out.material.node, spec.node_dimension) + ")"
+            ? " (" + node_location(problem.reference_positions(), c.body->element_corner_node(out.material.element), spec.node_dimension) + ")"
             : "";
     // A few points at a corner of the section, where the strain is singular, start to fail at a
     // pressure that falls as the mesh is refined (docs/model.md, Named failures).
