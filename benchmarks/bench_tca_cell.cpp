@@ -80,11 +80,11 @@ int main(int argc, char** argv) {
                 r.ring_centre_z_mm, r.model.name.c_str(), r.element_name.c_str(), r.dofs, r.path.path.stats.steps,
                 r.path.path.stats.newton_iterations, r.seconds, fem::to_string(r.path.outcome),
                 r.path.diagnosis.empty() ? "" : (": " + r.path.diagnosis).c_str());
-    std::printf("  costs: %d evaluations %.2f s, %d factorisations (%d shifted, %.1f GFlop each) %.2f s, "
+    std::printf("  costs: %d evaluations %.2f s, %d factorisations (%d shifted, %.1f GFlop each, nnz(L) %.2f M) %.2f s, "
                 "solves %.2f s (%d by CG on an earlier factor, %d CG iterations), analysis %.2f s, "
                 "end-face compliances %.2f s\n",
                 r.evaluations, r.assembly_s, r.path.factorizations, r.path.shifted_factorizations,
-                r.path.factor_flops / 1e9, r.path.factorize_s, r.path.solve_s, r.path.reused_solves,
+                r.path.factor_flops / 1e9, r.path.factor_nonzeros / 1e6, r.path.factorize_s, r.path.solve_s, r.path.reused_solves,
                 r.path.cg_iterations, r.path.analyse_s, r.compliance_s);
     std::printf("%12s %10s %14s %14s %12s %10s %14s %12s %12s %12s %12s %12s\n", "pressure_kPa", "stretch", "curv_deg_mm", "deg_per_pitch",
                 "volume_mm3", "gap_mm", "EI_Nmm2", "EA_N", "kx_per_mm", "ky_per_mm", "Cxx", "Cyy");
