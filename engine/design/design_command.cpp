@@ -255,6 +255,116 @@ int serve_design(const std::string& file, CellCluster& cells) {
   }
   return 0;
 }
+/// The run's first lines: the config's objective, requirements, search model, optimiser, the
+/// verification and rounds it asks for, and what a checkpoint gives back.
+void print_run_header(const std::string& file, const DesignConfig& config, int ranks, const DesignCheckpoint& checkpoint) {
+  std::cout << "softarm design: " << file << "\nobjective: " << config.objective << "; requirements: mass <= "
+            << config.requirements.max_mass_kg << " kg, payload >= " << config.requirements.min_payload_kg
+            << " kg, bending >= " << config.requirements.bending_per_segment_deg << " deg per segment at "
+            << config.requirements.max_pressure_kPa << " kPa, length " << config.requirements.length_m << " m\n"
+            << "search model: reduced rod + axisymmetric RRA FEM level " << config.model.rra_mesh_level << "; optimiser "
+            << config.optimiser.algorithm << ", budget " << config.optimiser.max_evaluations << " evaluations, "
+            << config.optimiser.starts << " start(s)";
+  if (config.verify_on_cells)
+    std::cout << "; every optimum verified on the cell rod of the whole arm, which decides feasibility"
+              << (ranks > 1 ? " (its cells spread over " + std::to_string(ranks) + " MPI ranks)" : "");
+  else
+    std::cout << "; no verification: the search model's verdict (fast fidelity)";
+  if (config.solid_check_segment > 0) std::cout << "; 3D check of segment " << config.solid_check_segment;
+  if (config.solid_corrections > 0) std::cout << "; up to " << config.solid_corrections << " correction round(s)";
+  if (config.improvement_rounds > 0) std::cout << " and " << config.improvement_rounds << " improvement round(s)";
+  std::cout << "\n";
+  if (checkpoint.resumed_evaluations() + checkpoint.resumed_solid_checks() + checkpoint.resumed_verifications() > 0)
+    std::cout << "resuming: " << checkpoint.resumed_evaluations() << " evaluations, " << checkpoint.resumed_solid_checks()
+              << " 3D check(s) and " << checkpoint.resumed_verifications() << " verification(s) of an earlier run are "
+              << "read from " << checkpoint.file().string() << " instead of computed (--fresh discards them)\n";
+}
+
+/// The answer's local peaks one RRA mesh level finer (run.finer_peaks): they come from a stress
+/// singularity (the groove lip), averaged over a ball so that they converge; this shows how far.
+void peaks_one_level_finer(const DesignConfig& config, DesignRun& run, double ref_strain) {
+  if (config.mesh_sensitivity) {
+    objectives::EvaluationSettings finer = config.check;
+    finer.rra_mesh_level = config.check.rra_mesh_level + 1;
+    run.finer_peaks = objectives::evaluate_arm(make_candidate(config, run.optimum_x), finer);
+    run.finer_reference_strain = objectives::durability_reference_log_strain(
+        config.requirements.durability_reference_pressure_kPa, finer.rra_mesh_level, finer.peak_averaging_radius_mm);
+    std::cout << "local peaks one RRA mesh level finer (level " << finer.rra_mesh_level << "): burst utilisation "
+              << fixed(run.finer_peaks->burst_utilisation, 3) << " (" << run.finer_peaks->burst_governing << ") vs "
+              << fixed(run.check.burst_utilisation, 3) << "; durability strain ratio "
+              << fixed(run.finer_peaks->durability_log_strain / run.finer_reference_strain, 3) << " vs "
+              << fixed(run.check.durability_log_strain / ref_strain, 3)
+              << " (peaks averaged over a ball of " << fixed(config.check.peak_averaging_radius_mm, 2)
+              << " mm, which converge under refinement where the groove lip's point value does not; durability is a "
+                 "ratio to the thesis RRA at the same level)\n";
+  } else {
+    std::cout << "local peaks one RRA mesh level finer: not computed (check.mesh_sensitivity is false)\n";
+  }
+}
+
+/// Check and correct, round by round, when there was more than one.
+void print_rounds(const DesignConfig& config, const DesignRun& run, double ref_strain) {
+  if (run.rounds.size() > 1) {
+    std::cout << "check and correct, round by round:\n";
+    for (std::size_t k = 0; k < run.rounds.size(); ++k) {
+      const auto& r = run.rounds[k];
+      std::cout << "  round " << k << " (" << purpose_name(r.purpose) << "): ";
+      if (r.verification && r.verification->ok())
+        std::cout << "verified mass " << fixed(r.verification->measures.mass_kg, 3) << " kg, "
+                  << (meets_every_requirement(config, r.verification->measures, ref_strain) ? "every requirement met"
+                                                                            : "NOT every requirement met");
+      else
+        std::cout << "correction " << r.correction.describe() << "; mass " << fixed(r.optimum.mass_kg, 3) << " kg"
+                  << (r.feasible ? "" : " (infeasible)");
+      if (r.solid_check)
+        std::cout << "; 3D: bending " << (r.solid_check->meets_bending() ? "met" : "NOT met") << ", working pressure "
+                  << r.solid_check->working_pressure_verdict() << ", rod error " << fixed(r.solid_check->bending_error_percent(), 1)
+                  << " %";
+      std::cout << "\n";
+    }
+    if (!run.rounds_stop_reason.empty()) std::cout << "  no further round: " << run.rounds_stop_reason << "\n";
+  }
+
+}
+
+/// The models' measured errors, then the answer as the cell rod verified it: every requirement met
+/// or the binding one, and the search model's error at the answer.
+void print_answer(const DesignConfig& config, const DesignRun& run, double ref_strain) {
+  std::cout << "model errors (fidelity ladder, softarm fidelity):";
+  for (const auto& e : model_errors_json(config.check.rra_mesh_level))
+    std::cout << " " << e["what"].get<std::string>() << " by the " << e["model"].get<std::string>() << ": "
+              << e["error_percent"].get<double>() << " % (" << e["measured_on"].get<std::string>() << ");";
+  std::cout << "\n";
+
+  if (const auto& v = run.verification(); v && v->ok()) {
+    const ConstraintValues g = constraints_of(config, v->measures, ref_strain);
+    std::cout << "\nanswer, verified on the cell rod: "
+              << (verified_all_met(run) ? "the design meets every requirement: " : "NOT every requirement met by: ")
+              << describe(config, run.optimum_x) << "\n";
+    print_measures("accurate model", v->measures);
+    print_constraints(g);
+    if (!verified_all_met(run)) {
+      std::size_t worst = 0;
+      for (std::size_t i = 1; i < g.values.size(); ++i)
+        if (g.values[i] > g.values[worst]) worst = i;
+      std::cout << "binding constraint on the accurate model: " << g.names[worst] << ", violated by "
+                << fixed(100 * g.values[worst], 1) << " % of its limit (after " << run.rounds.size() << " round(s))\n";
+    }
+    const objectives::ArmMeasures& raw = run.optimum_uncorrected;
+    const auto percent = [](double search, double accurate) {
+      return std::abs(accurate) > 1e-12 ? fixed(100 * (search - accurate) / std::abs(accurate), 1) + " %" : std::string("n/a");
+    };
+    std::cout << "search model's error at this design (uncorrected fibre rod against the cell rod): payload "
+              << percent(raw.payload_kg, v->measures.payload_kg) << ", bending per segment "
+              << percent(raw.segments[0].bending_deg_at_working, v->measures.segments[0].bending_deg_at_working) << " / "
+              << percent(raw.segments[1].bending_deg_at_working, v->measures.segments[1].bending_deg_at_working) << " / "
+              << percent(raw.segments[2].bending_deg_at_working, v->measures.segments[2].bending_deg_at_working)
+              << ", burst utilisation " << percent(raw.burst_utilisation, v->measures.burst_utilisation) << "\n";
+  } else if (config.verify_on_cells) {
+    std::cout << "\nanswer NOT verified: the cell rod could not measure the final design (above)\n";
+  }
+}
+
 }  // namespace
 
 int run_design(const std::string& file, const DesignOverrides& overrides) {
@@ -275,26 +385,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
   prepare_output_directory(config.output_directory,
                            overrides.output_directory.empty() ? "output.directory" : "-o/--output");
   DesignCheckpoint checkpoint(config.output_directory, document, overrides.fresh);
-  std::cout << "softarm design: " << file << "\nobjective: " << config.objective << "; requirements: mass <= "
-            << config.requirements.max_mass_kg << " kg, payload >= " << config.requirements.min_payload_kg
-            << " kg, bending >= " << config.requirements.bending_per_segment_deg << " deg per segment at "
-            << config.requirements.max_pressure_kPa << " kPa, length " << config.requirements.length_m << " m\n"
-            << "search model: reduced rod + axisymmetric RRA FEM level " << config.model.rra_mesh_level << "; optimiser "
-            << config.optimiser.algorithm << ", budget " << config.optimiser.max_evaluations << " evaluations, "
-            << config.optimiser.starts << " start(s)";
-  if (config.verify_on_cells)
-    std::cout << "; every optimum verified on the cell rod of the whole arm, which decides feasibility"
-              << (cells.size() > 1 ? " (its cells spread over " + std::to_string(cells.size()) + " MPI ranks)" : "");
-  else
-    std::cout << "; no verification: the search model's verdict (fast fidelity)";
-  if (config.solid_check_segment > 0) std::cout << "; 3D check of segment " << config.solid_check_segment;
-  if (config.solid_corrections > 0) std::cout << "; up to " << config.solid_corrections << " correction round(s)";
-  if (config.improvement_rounds > 0) std::cout << " and " << config.improvement_rounds << " improvement round(s)";
-  std::cout << "\n";
-  if (checkpoint.resumed_evaluations() + checkpoint.resumed_solid_checks() + checkpoint.resumed_verifications() > 0)
-    std::cout << "resuming: " << checkpoint.resumed_evaluations() << " evaluations, " << checkpoint.resumed_solid_checks()
-              << " 3D check(s) and " << checkpoint.resumed_verifications() << " verification(s) of an earlier run are "
-              << "read from " << checkpoint.file().string() << " instead of computed (--fresh discards them)\n";
+  print_run_header(file, config, cells.size(), checkpoint);
 
   const double ref_strain =
       objectives::durability_reference_log_strain(config.requirements.durability_reference_pressure_kPa,
@@ -464,79 +555,10 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
             << fixed(run.check.min_bending_deg - run.optimum.min_bending_deg, 2) << " deg, burst utilisation "
             << fixed(run.check.burst_utilisation - run.optimum.burst_utilisation, 3) << "; search margin "
             << fixed(100 * config.search_margin, 1) << " %\n";
-  // The local peaks come from a stress singularity (the groove lip): how they move one RRA mesh level finer.
-  if (config.mesh_sensitivity) {
-    objectives::EvaluationSettings finer = config.check;
-    finer.rra_mesh_level = config.check.rra_mesh_level + 1;
-    run.finer_peaks = objectives::evaluate_arm(make_candidate(config, run.optimum_x), finer);
-    run.finer_reference_strain = objectives::durability_reference_log_strain(
-        config.requirements.durability_reference_pressure_kPa, finer.rra_mesh_level, finer.peak_averaging_radius_mm);
-    std::cout << "local peaks one RRA mesh level finer (level " << finer.rra_mesh_level << "): burst utilisation "
-              << fixed(run.finer_peaks->burst_utilisation, 3) << " (" << run.finer_peaks->burst_governing << ") vs "
-              << fixed(run.check.burst_utilisation, 3) << "; durability strain ratio "
-              << fixed(run.finer_peaks->durability_log_strain / run.finer_reference_strain, 3) << " vs "
-              << fixed(run.check.durability_log_strain / ref_strain, 3)
-              << " (peaks averaged over a ball of " << fixed(config.check.peak_averaging_radius_mm, 2)
-              << " mm, which converge under refinement where the groove lip's point value does not; durability is a "
-                 "ratio to the thesis RRA at the same level)\n";
-  } else {
-    std::cout << "local peaks one RRA mesh level finer: not computed (check.mesh_sensitivity is false)\n";
-  }
-  if (run.rounds.size() > 1) {
-    std::cout << "check and correct, round by round:\n";
-    for (std::size_t k = 0; k < run.rounds.size(); ++k) {
-      const auto& r = run.rounds[k];
-      std::cout << "  round " << k << " (" << purpose_name(r.purpose) << "): ";
-      if (r.verification && r.verification->ok())
-        std::cout << "verified mass " << fixed(r.verification->measures.mass_kg, 3) << " kg, "
-                  << (meets_every_requirement(config, r.verification->measures, ref_strain) ? "every requirement met"
-                                                                            : "NOT every requirement met");
-      else
-        std::cout << "correction " << r.correction.describe() << "; mass " << fixed(r.optimum.mass_kg, 3) << " kg"
-                  << (r.feasible ? "" : " (infeasible)");
-      if (r.solid_check)
-        std::cout << "; 3D: bending " << (r.solid_check->meets_bending() ? "met" : "NOT met") << ", working pressure "
-                  << r.solid_check->working_pressure_verdict() << ", rod error " << fixed(r.solid_check->bending_error_percent(), 1)
-                  << " %";
-      std::cout << "\n";
-    }
-    if (!run.rounds_stop_reason.empty()) std::cout << "  no further round: " << run.rounds_stop_reason << "\n";
-  }
+  peaks_one_level_finer(config, run, ref_strain);
+  print_rounds(config, run, ref_strain);
 
-
-  std::cout << "model errors (fidelity ladder, softarm fidelity):";
-  for (const auto& e : model_errors_json(config.check.rra_mesh_level))
-    std::cout << " " << e["what"].get<std::string>() << " by the " << e["model"].get<std::string>() << ": "
-              << e["error_percent"].get<double>() << " % (" << e["measured_on"].get<std::string>() << ");";
-  std::cout << "\n";
-
-  if (const auto& v = run.verification(); v && v->ok()) {
-    const ConstraintValues g = constraints_of(config, v->measures, ref_strain);
-    std::cout << "\nanswer, verified on the cell rod: "
-              << (verified_all_met(run) ? "the design meets every requirement: " : "NOT every requirement met by: ")
-              << describe(config, run.optimum_x) << "\n";
-    print_measures("accurate model", v->measures);
-    print_constraints(g);
-    if (!verified_all_met(run)) {
-      std::size_t worst = 0;
-      for (std::size_t i = 1; i < g.values.size(); ++i)
-        if (g.values[i] > g.values[worst]) worst = i;
-      std::cout << "binding constraint on the accurate model: " << g.names[worst] << ", violated by "
-                << fixed(100 * g.values[worst], 1) << " % of its limit (after " << run.rounds.size() << " round(s))\n";
-    }
-    const objectives::ArmMeasures& raw = run.optimum_uncorrected;
-    const auto percent = [](double search, double accurate) {
-      return std::abs(accurate) > 1e-12 ? fixed(100 * (search - accurate) / std::abs(accurate), 1) + " %" : std::string("n/a");
-    };
-    std::cout << "search model's error at this design (uncorrected fibre rod against the cell rod): payload "
-              << percent(raw.payload_kg, v->measures.payload_kg) << ", bending per segment "
-              << percent(raw.segments[0].bending_deg_at_working, v->measures.segments[0].bending_deg_at_working) << " / "
-              << percent(raw.segments[1].bending_deg_at_working, v->measures.segments[1].bending_deg_at_working) << " / "
-              << percent(raw.segments[2].bending_deg_at_working, v->measures.segments[2].bending_deg_at_working)
-              << ", burst utilisation " << percent(raw.burst_utilisation, v->measures.burst_utilisation) << "\n";
-  } else if (config.verify_on_cells) {
-    std::cout << "\nanswer NOT verified: the cell rod could not measure the final design (above)\n";
-  }
+  print_answer(config, run, ref_strain);
   run.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   write_design_outputs(run);
   std::cout << "total " << fixed(run.seconds, 1) << " s; written: " << config.output_directory
