@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fem/core/elapsed_seconds.hpp"
 #include "fem/core/parallel.hpp"
 
 namespace softarm::fem {
@@ -47,12 +48,7 @@ Vector EnergyProblem::advanced(const Vector& x, const Vector& dx) const {
 
 Evaluation EnergyProblem::evaluate(const Vector& x, bool want_gradient, bool want_hessian) const {
   if (!pattern_.finalized()) throw std::logic_error("EnergyProblem::evaluate before finalize()");
-  const auto t0 = std::chrono::steady_clock::now();
-  struct Timer {  // counts every exit path
-    const std::chrono::steady_clock::time_point t0;
-    double& total;
-    ~Timer() { total += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); }
-  } timer{t0, assembly_seconds_};
+  const AddElapsedSeconds timer(assembly_seconds_);  // every exit path counts
   ++evaluations_;
   Evaluation out;
   const int n = num_dofs();

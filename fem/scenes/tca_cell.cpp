@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include "fem/core/elapsed_seconds.hpp"
 #include "fem/core/parallel.hpp"
 #include "fem/forms/make_elastic_form.hpp"
 #include "fem/forms/periodic_face_form.hpp"
@@ -106,11 +107,7 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
   Eigen::Matrix2d T;
   T << 0, 1, -1, 0;
   const auto add_compliance = [&](TcaCellState& c, const Vector& xs) {
-    struct Clock {  // every return below counts
-      std::chrono::steady_clock::time_point t0;
-      double& total;
-      ~Clock() { total += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); }
-    } clock{std::chrono::steady_clock::now(), out.compliance_s};
+    const AddElapsedSeconds timer(out.compliance_s);  // every return below counts
     const Evaluation e = problem.evaluate(xs, false, true);
     LinearSolver& solver = compliance_solver;
     if (solver.factorize(e.hessian) != LinearSolver::Status::positive_definite) return;
