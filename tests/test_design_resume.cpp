@@ -16,11 +16,13 @@
 #include <vector>
 
 #include "fem/core/json_reader.hpp"
+#include "support/csv_fields.hpp"
 #include "support/text_file.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
+using softarm::test::csv_fields;
 using softarm::test::read_text;
 
 std::vector<std::string> lines_of(const fs::path& file) {
@@ -58,6 +60,17 @@ TEST_CASE("softarm design resumes from its checkpoint and computes only what is 
   REQUIRE(run_design(dir / "requirements.json", out, 3, dir / "first.log") == 0);
   const std::vector<std::string> first_history = lines_of(out / "history.csv");
   REQUIRE(first_history.size() == 4);  // header and 3 evaluations
+  // Every record parses, as a spreadsheet reads it, into the header's columns (the phase holds a
+  // comma: "tube_material=…, sheath_material=…: start 1"), and the materials are named.
+  const std::vector<std::string> header = csv_fields(first_history[0]);
+  const auto tube = std::find(header.begin(), header.end(), "tube_material") - header.begin();
+  REQUIRE(tube < static_cast<std::ptrdiff_t>(header.size()));
+  for (std::size_t i = 1; i < first_history.size(); ++i) {
+    INFO(first_history[i]);
+    const std::vector<std::string> fields = csv_fields(first_history[i]);
+    CHECK(fields.size() == header.size());
+    if (fields.size() == header.size()) CHECK_THAT(fields[tube], Catch::StartsWith("dragon_skin_"));
+  }
   CHECK(lines_of(out / "checkpoint.jsonl").size() == 4);  // header and 3 evaluations
 
   REQUIRE(run_design(dir / "requirements.json", out, 5, dir / "second.log") == 0);

@@ -17,8 +17,20 @@ std::string fixed(double v, int digits) {
 }
 }  // namespace
 
+std::string SearchLog::variable_text(std::size_t i, double value) const {
+  const optimise::Variable* v = i < variables_.size() ? &variables_[i] : nullptr;
+  if (!v || v->kind != optimise::VariableKind::categorical) {
+    std::ostringstream s;
+    s << value;
+    return s.str();
+  }
+  const auto choice = static_cast<std::size_t>(std::lround(value));  // a categorical's value is its choice's index
+  return choice < v->choices.size() ? csv_text(v->choices[choice]) : csv_text("?");
+}
+
 SearchLog::SearchLog(const DesignConfig& config, double reference_strain, std::vector<HistoryPoint>& points)
     : csv_(open_output_file(config.output_directory, "history.csv")), points_(&points) {
+  for (const auto& v : config.variables) variables_.push_back(v.variable);
   csv_ << "evaluation,phase,feasible,objective";
   for (const auto& n : constraints_of(config, {}, reference_strain).names) csv_ << ",g_" << n;
   for (const auto& v : config.variables) csv_ << "," << v.variable.name;
@@ -50,11 +62,11 @@ void SearchLog::record(const optimise::Progress& p, const std::vector<std::strin
               << " %)  best feasible " << (std::isfinite(p.best_feasible_objective) ? fixed(p.best_feasible_objective, 4) : "none")
               << "\n";
   }
-  csv_ << n << "," << phase << "," << feasible << "," << (p.value.ok ? p.value.objective : std::nan(""));
+  csv_ << n << "," << csv_text(phase) << "," << feasible << "," << (p.value.ok ? p.value.objective : std::nan(""));
   for (std::size_t i = 0; i < constraint_names.size(); ++i)
     csv_ << "," << (i < p.value.constraints.size() ? p.value.constraints[i] : std::nan(""));
-  for (double v : p.x) csv_ << "," << v;
-  csv_ << ",\"" << p.value.failure_reason << "\"\n";
+  for (std::size_t i = 0; i < p.x.size(); ++i) csv_ << "," << variable_text(i, p.x[i]);
+  csv_ << "," << csv_text(p.value.failure_reason) << "\n";
   csv_.flush();
 }
 

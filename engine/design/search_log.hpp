@@ -23,7 +23,11 @@ class SearchLog {
   void next_round(int evaluations, const std::string& round_label);
 
  private:
+  /// Variable i's value as a CSV field: a number, or a categorical variable's choice by name.
+  std::string variable_text(std::size_t i, double value) const;
+
   std::ofstream csv_;
+  std::vector<optimise::Variable> variables_;  // history.csv's columns after the constraints
   std::vector<HistoryPoint>* points_;
   int evaluations_before_ = 0;  // of earlier rounds
   std::string round_;           // "" for the first search

@@ -21,6 +21,12 @@ void prepare_output_directory(const std::string& directory, const std::string& f
   if (::access(directory.c_str(), W_OK | X_OK) != 0) refuse("no permission to create files in it");
 }
 
+std::string csv_text(const std::string& text) {
+  std::string field = "\"";
+  for (const char c : text) field += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return field + "\"";
+}
+
 std::ofstream open_output_file(const std::string& directory, const std::string& file, std::ios::openmode mode) {
   std::error_code error;
   std::filesystem::create_directories(directory, error);

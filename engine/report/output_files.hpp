@@ -18,6 +18,10 @@ void prepare_output_directory(const std::string& directory, const std::string& f
 std::ofstream open_output_file(const std::string& directory, const std::string& file,
                                std::ios::openmode mode = std::ios::out);
 
+/// `text` as one CSV field (RFC 4180): in double quotes, each quote doubled, so that commas, quotes
+/// and line breaks in a phase name or a diagnosis stay inside their column for any CSV reader.
+std::string csv_text(const std::string& text);
+
 /// Writes `document` to <directory>/<file>, indented.
 void write_json_file(const std::string& directory, const std::string& file, const nlohmann::json& document);
 

@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "engine/report/html_document.hpp"
+#include "engine/report/output_files.hpp"
 #include "engine/report/svg_plot.hpp"
 #include "engine/study/shape_svg.hpp"
 #include "studies/design_rule.hpp"
@@ -150,9 +151,8 @@ void write_csv(const StudySpec& spec, const std::vector<StudyPoint>& points, con
       csv << ",";
       if (std::isfinite(v)) csv << v;
     }
-    std::string diagnosis = r ? r->value("diagnosis", std::string()) : "";
-    std::replace(diagnosis.begin(), diagnosis.end(), '"', '\'');
-    csv << "," << number_or_nan(r, "seconds") << ",\"" << diagnosis << "\"\n";
+    csv << "," << number_or_nan(r, "seconds") << "," << csv_text(r ? r->value("diagnosis", std::string()) : "")
+        << "\n";
   }
 }
 
