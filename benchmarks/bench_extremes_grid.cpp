@@ -14,12 +14,16 @@
 // Runs go side by side, one thread each (--threads, SOFTARM_THREADS; the rows' order is the
 // grid's whatever the threads).
 //
-// Usage: bench_extremes_grid [--max-level L] [--results FILE] [--threads N]
+// Usage: bench_extremes_grid [--levels 1,2] [--match TEXT ...] [--results FILE] [--threads N]
+//   --levels: the RRA mesh levels to run (1 to 3); each level's limit pressures are compared with the
+//   next one's. --match: only the cases whose name holds one of these texts ("wall 0.90 cap 1.000"),
+//   e.g. to run level 3 where levels 1 and 2 differ.
+#include <CLI/CLI.hpp>
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -129,33 +133,51 @@ std::map<std::pair<int, std::string>, Outcome> read_results(const std::string& f
 }  // namespace
 
 int main(int argc, char** argv) {
-  int max_level = 2;
+  CLI::App app{"the lone RRA over the corners and edges of the design bounds (issue 38)"};
+  std::vector<int> levels{1, 2};
+  std::vector<std::string> matches;
   std::string results_file = "bench_extremes_grid.csv";
-  for (int i = 1; i + 1 < argc; ++i) {
-    if (!std::strcmp(argv[i], "--max-level")) max_level = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--results")) results_file = argv[++i];
-    else if (!std::strcmp(argv[i], "--threads")) fem::set_thread_count(std::atoi(argv[++i]));
+  int threads = fem::thread_count();
+  app.add_option("--levels", levels, "RRA mesh levels to run, compared pairwise")->delimiter(',')->check(CLI::Range(1, 3));
+  app.add_option("--match", matches, "only the cases whose name holds one of these texts");
+  app.add_option("--results", results_file, "results file: appended to as runs end, read to resume");
+  app.add_option("--threads", threads, "runs side by side")->check(CLI::Range(1, 256));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;  // --help: 0; a bad option: its message and 2, before any run
   }
+  fem::set_thread_count(threads);
+  std::sort(levels.begin(), levels.end());
+  levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+  const auto chosen = [&](const Case& c) {
+    return matches.empty() || std::any_of(matches.begin(), matches.end(), [&](const std::string& m) {
+             return c.name().find(m) != std::string::npos;
+           });
+  };
   const auto cases = grid();
   auto done = read_results(results_file);
   std::ofstream results(results_file, std::ios::app);
   std::mutex results_mutex;
   std::printf("results: %s (%zu runs held; %d threads)\n", results_file.c_str(), done.size(), fem::thread_count());
-  std::vector<std::vector<Outcome>> outcomes(max_level, std::vector<Outcome>(cases.size()));
-  for (int level = 1; level <= max_level; ++level) {
+  std::map<int, std::vector<Outcome>> outcomes;
+  for (const int level : levels) {
+    outcomes[level].resize(cases.size());
     std::vector<int> todo;
     for (std::size_t k = 0; k < cases.size(); ++k) {
+      if (!chosen(cases[k])) continue;
       const auto held = done.find({level, cases[k].name()});
-      if (held != done.end()) outcomes[level - 1][k] = held->second;
+      if (held != done.end()) outcomes[level][k] = held->second;
       else todo.push_back(static_cast<int>(k));
     }
-    std::printf("\nRRA mesh level %d: %zu runs, %zu of them to do\n", level, cases.size(), todo.size());
+    const auto n_chosen = std::count_if(cases.begin(), cases.end(), chosen);
+    std::printf("\nRRA mesh level %d: %ld runs, %zu of them to do\n", level, static_cast<long>(n_chosen), todo.size());
     std::fflush(stdout);
     fem::parallel_tasks(static_cast<int>(todo.size()), [&](int i) {
       const int k = todo[static_cast<std::size_t>(i)];
       const Outcome o = run(cases[k], level);
       const std::lock_guard<std::mutex> lock(results_mutex);
-      outcomes[level - 1][k] = o;
+      outcomes[level][k] = o;
       results << row(level, cases[k], o) << std::endl;  // flushed: a stop loses at most the runs under way
       if (o.kind != "completed")
         std::printf("  %-52s %-11s reached %6.1f kPa  limit %6.1f kPa  %5.1f s  %.160s\n", cases[k].name().c_str(),
@@ -164,7 +186,9 @@ int main(int argc, char** argv) {
     });
     std::map<std::string, int> count;
     double total = 0;
-    for (const Outcome& o : outcomes[level - 1]) {
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      if (!chosen(cases[k])) continue;
+      const Outcome& o = outcomes[level][k];
       ++count[o.found_by.empty() ? o.kind : o.kind + " (" + o.found_by + ")"];
       total += o.seconds;
     }
@@ -172,12 +196,13 @@ int main(int argc, char** argv) {
     for (const auto& [kind, n] : count) std::printf("  %s %d", kind.c_str(), n);
     std::printf("  (%.1f s of runs in all)\n", total);
   }
-  if (max_level >= 2) {
-    std::printf("\nlimit pressures, level 1 -> 2:\n");
+  for (std::size_t l = 0; l + 1 < levels.size(); ++l) {
+    const int coarse = levels[l], fine = levels[l + 1];
+    std::printf("\nlimit pressures, level %d -> %d:\n", coarse, fine);
     double worst = 0;
     for (std::size_t k = 0; k < cases.size(); ++k) {
-      const Outcome &a = outcomes[0][k], &b = outcomes[1][k];
-      if (a.kind != "limit_point" && b.kind != "limit_point") continue;
+      const Outcome &a = outcomes[coarse][k], &b = outcomes[fine][k];
+      if (!chosen(cases[k]) || (a.kind != "limit_point" && b.kind != "limit_point")) continue;
       const double change = 100 * (a.limit_kPa - b.limit_kPa) / b.limit_kPa;
       if (std::isfinite(change)) worst = std::max(worst, std::abs(change));
       std::printf("  %-52s %-11s %7.1f  %-11s %7.1f kPa  %+6.2f %%\n", cases[k].name().c_str(), a.kind.c_str(),
