@@ -203,9 +203,11 @@ bool verified_all_met(const DesignRun& run) {
          meets_every_requirement(*run.config, run.verification()->measures, run.reference_strain);
 }
 
-void write_design_outputs(const DesignRun& run) {
+namespace {
+/// summary.json: the optimum, its measures and constraints, the thesis design beside it, the
+/// optimiser's record, the verification on the cell rod and each check-and-correct round.
+nlohmann::json design_summary(const DesignRun& run) {
   const DesignConfig& c = *run.config;
-  const std::string& dir = c.output_directory;
   nlohmann::json summary = {
       {"objective", c.objective},
       {"feasible", run.result.feasible},
@@ -246,7 +248,14 @@ void write_design_outputs(const DesignRun& run) {
          {"mass_kg", r.optimum.mass_kg},
          {"solid_check", r.solid_check ? solid_check_json(*r.solid_check) : nlohmann::json()}});
   summary["rounds_stop_reason"] = run.rounds_stop_reason;
-  write_json_file(dir, "summary.json", summary);
+  return summary;
+}
+
+/// optimum_payload_pose.vtu (the rod's pose lifting the payload) and optimum_mesh.vtu, the optimum's
+/// 3D geometry.
+void write_design_geometry(const DesignRun& run) {
+  const DesignConfig& c = *run.config;
+  const std::string& dir = c.output_directory;
   write_pose_vtu(dir, run.optimum);
   // The optimum's 3D geometry (Hex8, level 1) with part ids, for ParaView next to the pose.
   fem::SolidMeshOptions mesh_options;
@@ -254,8 +263,11 @@ void write_design_outputs(const DesignRun& run) {
   const fem::Mesh mesh = fem::mesh_spl(make_candidate(c, run.optimum_x).design, mesh_options);
   fem::write_vtu((std::filesystem::path(dir) / "optimum_mesh.vtu").string(), mesh, mesh.X, {}, {});
 
-  report::HtmlDocument doc("softarm design report");
-  doc.heading(1, "softarm design report");
+}
+
+/// The report's opening verdict: whether the design meets every requirement, on which model.
+void add_verdict(report::HtmlDocument& doc, const DesignRun& run) {
+  const DesignConfig& c = *run.config;
   const bool verified = c.verify_on_cells;  // asked for: a verification that could not run is no verdict of feasibility
   const bool feasible = verified ? verified_all_met(run) : run.result.feasible;
   doc.paragraph(std::string(feasible ? (verified ? "The design meets every requirement on the accurate model (the cell rod)."
@@ -266,6 +278,11 @@ void write_design_outputs(const DesignRun& run) {
                 " Objective: " + c.objective + ". Optimiser: " + c.optimiser.algorithm + ", " +
                 std::to_string(run.result.evaluations) + " evaluations, " + format_number(run.result.seconds) + " s (" +
                 run.result.stop_reason + "). Total run " + format_number(run.seconds) + " s.");
+}
+
+/// The optimal parameters beside the thesis design's, with their bounds.
+void add_parameters(report::HtmlDocument& doc, const DesignRun& run) {
+  const DesignConfig& c = *run.config;
   doc.heading(2, "Optimal parameters");
   std::vector<std::vector<std::string>> rows;
   const auto od = design_json(c, run.optimum_x), td = design_json(c, run.thesis_x);
@@ -275,6 +292,12 @@ void write_design_outputs(const DesignRun& run) {
                     v.variable.kind == optimise::VariableKind::categorical ? "choices" : format_number(v.variable.lower) + " – " + format_number(v.variable.upper)});
   }
   doc.table({"variable", "optimum", "thesis", "bounds"}, rows);
+}
+
+/// The final design on the cell rod (the verdict), segment by segment.
+void add_verification(report::HtmlDocument& doc, const DesignRun& run) {
+  const DesignConfig& c = *run.config;
+  const bool verified = c.verify_on_cells;
   if (verified && run.verification()->ok()) {
     const objectives::CellRodEvaluation& v = *run.verification();
     doc.heading(2, "Verification on the accurate model");
@@ -297,6 +320,13 @@ void write_design_outputs(const DesignRun& run) {
                   " mm radius: the point at the groove lip is a singularity (docs/definitions.md, Peak averaging "
                   "radius).");
   }
+}
+
+/// Each constraint's margin for the optimum, the thesis design and the re-check, and their chart.
+void add_constraints(report::HtmlDocument& doc, const DesignRun& run) {
+  const DesignConfig& c = *run.config;
+  const bool verified = c.verify_on_cells;
+  const auto g = constraints_of(c, run.optimum, run.reference_strain);
   doc.heading(2, "Constraints and margins");
   const bool corrected = !run.rounds.empty() && run.rounds.back().correction.checks > 0;
   doc.table({"constraint", "optimum", "margin"}, constraint_rows(c, run.optimum, run.reference_strain),
@@ -323,6 +353,11 @@ void write_design_outputs(const DesignRun& run) {
   for (std::size_t i = 0; i < g.names.size(); ++i) bars.bars.push_back({g.names[i], -100 * g.values[i], ""});
   doc.raw_html(report::render_svg(bars));
 
+}
+
+/// The pressure-bending curves, the payload pose and the search's convergence.
+void add_curves(report::HtmlDocument& doc, const DesignRun& run) {
+  const DesignConfig& c = *run.config;
   doc.heading(2, "Pressure–bending curves per segment");
   report::LinePlot bend;
   bend.title = "Bending angle vs pressure (segment alone, gravity against the bend)";
@@ -363,6 +398,11 @@ void write_design_outputs(const DesignRun& run) {
   }
   conv.series = {feas, infeas};
   doc.raw_html(report::render_svg(conv));
+}
+
+/// The search model and its measured error; the optimum's 3D check.
+void add_model(report::HtmlDocument& doc, const DesignRun& run) {
+  const DesignConfig& c = *run.config;
   doc.heading(2, "Model");
   doc.paragraph("Search model: the finite-strain fibre-section rod (fem/reduced) with each segment's RRA in the "
                 "axisymmetric FEM (level " + std::to_string(c.model.rra_mesh_level) +
@@ -379,6 +419,11 @@ void write_design_outputs(const DesignRun& run) {
                   ". 3D verdict: bending " + (sc.meets_bending() ? "met" : "NOT met") + ", working pressure " +
                   sc.working_pressure_verdict() + ".");
   }
+}
+
+/// The rounds on the accurate model (or of check and correct), one table row each.
+void add_rounds(report::HtmlDocument& doc, const DesignRun& run) {
+  const DesignConfig& c = *run.config;
   if (run.rounds.size() > 1 && c.verify_on_cells) {
     doc.heading(2, "Rounds on the accurate model");
     doc.paragraph("Each round searches with the search model corrected by every verified design so far (each "
@@ -419,6 +464,22 @@ void write_design_outputs(const DesignRun& run) {
     doc.table({"round", "correction", "mass (kg)", "3D bending", "rod error (%)", "3D bending verdict", "3D working pressure"},
               round_rows, "check and correct, round by round");
   }
+}
+}  // namespace
+
+void write_design_outputs(const DesignRun& run) {
+  const std::string& dir = run.config->output_directory;
+  write_json_file(dir, "summary.json", design_summary(run));
+  write_design_geometry(run);
+  report::HtmlDocument doc("softarm design report");
+  doc.heading(1, "softarm design report");
+  add_verdict(doc, run);
+  add_parameters(doc, run);
+  add_verification(doc, run);
+  add_constraints(doc, run);
+  add_curves(doc, run);
+  add_model(doc, run);
+  add_rounds(doc, run);
   doc.write(std::filesystem::path(dir) / "report.html");
 }
 
