@@ -17,7 +17,8 @@
 // Usage: bench_extremes_grid [--levels 1,2] [--match TEXT ...] [--results FILE] [--threads N]
 //   --levels: the RRA mesh levels to run (1 to 3); each level's limit pressures are compared with the
 //   next one's. --match: only the cases whose name holds one of these texts ("wall 0.90 cap 1.000"),
-//   e.g. to run level 3 where levels 1 and 2 differ.
+//   e.g. to run level 3 where levels 1 and 2 differ. --held-only: run nothing, print the tables of
+//   the runs held (a case not held counts as "not run").
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
@@ -68,7 +69,7 @@ std::vector<Case> grid() {
 }
 
 struct Outcome {
-  std::string kind;  // completed, limit_point, stalled, refused
+  std::string kind = "not run";  // completed, limit_point, stalled, refused
   std::string found_by;  // a limit point's fem::LimitKind (traced, pressure_volume, lowest_mode, fold)
   double limit_kPa = NAN, reached_kPa = NAN, seconds = 0;
   std::string words;
@@ -138,10 +139,12 @@ int main(int argc, char** argv) {
   std::vector<std::string> matches;
   std::string results_file = "bench_extremes_grid.csv";
   int threads = fem::thread_count();
+  bool held_only = false;
   app.add_option("--levels", levels, "RRA mesh levels to run, compared pairwise")->delimiter(',')->check(CLI::Range(1, 3));
   app.add_option("--match", matches, "only the cases whose name holds one of these texts");
   app.add_option("--results", results_file, "results file: appended to as runs end, read to resume");
   app.add_option("--threads", threads, "runs side by side")->check(CLI::Range(1, 256));
+  app.add_flag("--held-only", held_only, "run nothing: the tables of the runs the results file holds");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -168,7 +171,7 @@ int main(int argc, char** argv) {
       if (!chosen(cases[k])) continue;
       const auto held = done.find({level, cases[k].name()});
       if (held != done.end()) outcomes[level][k] = held->second;
-      else todo.push_back(static_cast<int>(k));
+      else if (!held_only) todo.push_back(static_cast<int>(k));
     }
     const auto n_chosen = std::count_if(cases.begin(), cases.end(), chosen);
     std::printf("\nRRA mesh level %d: %ld runs, %zu of them to do\n", level, static_cast<long>(n_chosen), todo.size());
