@@ -5,6 +5,7 @@
 
 #include "engine/report/output_files.hpp"
 #include "engine/spl_report.hpp"
+#include "fem/io/vtu_writer.hpp"
 #include "fem/scenes/reduced_scenes.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
 #include "fem/scenes/tca_cell_rod.hpp"
@@ -25,6 +26,26 @@ void write_curve(const fem::SceneConfig& config, const std::string& column, cons
   }
   std::cout.unsetf(std::ios::floatfield);
 }
+
+/// centreline.vtu: the rod's centreline at each state, one polyline per state from the clamp to the
+/// tip, with `field` (the state's pressure or load fraction) as cell data for ParaView to colour by.
+/// A few kilobytes: written whatever output.vtu says (that switch is for the FEM's deformed mesh).
+/// Returns the words for the "written:" line.
+template <class State>
+std::string write_centrelines(const fem::SceneConfig& config, const std::vector<State>& states, const std::string& field,
+                              double (*value)(const State&)) {
+  std::vector<std::vector<Eigen::Vector3d>> lines;
+  fem::NamedField per_line{field, 1, {}};
+  for (const State& s : states) {
+    lines.push_back(s.centreline_mm);
+    per_line.values.push_back(value(s));
+  }
+  fem::write_polyline_vtu(config.output.directory + "/centreline.vtu", lines, per_line);
+  return ", " + config.output.directory + "/centreline.vtu";
+}
+
+double load_fraction_of(const fem::SplState& s) { return s.load_fraction; }
+double pressure_of(const fem::CellRodState& s) { return s.pressure_kPa; }
 
 nlohmann::json model_json(const fem::SceneConfig& config) {
   const auto& s = *config.selection;
@@ -59,7 +80,8 @@ int simulate_reduced_spl(const fem::SceneConfig& config) {
                    {"mass_kg", {{"tube", m.tube}, {"rings", m.rings}, {"sheath", m.sheath}, {"connectors", m.connectors},
                                 {"total", r.mass_kg}}},
                    {"segment_fibre_extremes", segments}, {"rod_nodes", r.nodes}, {"seconds", r.seconds}});
-  std::cout << "written: " << dir << "/curve.csv, " << dir << "/summary.json\n";
+  const std::string centrelines = write_centrelines(config, r.curve, "load_fraction", load_fraction_of);
+  std::cout << "written: " << dir << "/curve.csv, " << dir << "/summary.json" << centrelines << "\n";
   return f.converged ? 0 : 1;
 }
 
@@ -108,7 +130,8 @@ int simulate_cell_rod_tca(const fem::SceneConfig& config) {
                    {"end_cells_note", r.end_cells_note}, {"rod", r.spatial ? "spatial" : "planar"},
                    {"outcome", fem::to_string(r.outcome)}, {"reached_pressure_kPa", r.reached_pressure_kPa},
                    {"diagnosis", r.diagnosis}, {"cell_seconds", r.cell_seconds}, {"rod_seconds", r.rod_seconds}});
-  std::cout << "written: " << dir << "/curve.csv, " << dir << "/summary.json\n";
+  const std::string centrelines = write_centrelines(config, r.curve, "pressure_kPa", pressure_of);
+  std::cout << "written: " << dir << "/curve.csv, " << dir << "/summary.json" << centrelines << "\n";
   return fem::is_answer(r.outcome) ? 0 : 1;
 }
 
@@ -162,7 +185,8 @@ int simulate_cell_rod_spl(const fem::SceneConfig& config) {
                    {"largest_end_cell_dofs", c.largest_end_cell_dofs}, {"end_cells_note", c.end_cells_note},
                    {"cell_seconds", c.seconds},
                    {"rod_seconds", r.rod_seconds}});
-  std::cout << "written: " << dir << "/curve.csv, " << dir << "/summary.json\n";
+  const std::string centrelines = write_centrelines(config, r.curve, "load_fraction", load_fraction_of);
+  std::cout << "written: " << dir << "/curve.csv, " << dir << "/summary.json" << centrelines << "\n";
   return r.converged ? 0 : 1;
 }
 

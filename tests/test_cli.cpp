@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -168,7 +169,7 @@ TEST_CASE("softarm bare prints its help, --version its version, an unknown comma
 
 TEST_CASE("softarm refuses non-finite and out-of-range options, naming the option", "[cli]") {
   const std::string rra = std::string(SOFTARM_SOURCE_DIR) + "/configs/rra_thesis.json";
-  for (const std::string args : {"export " + rra + " --pressure-kPa nan -o /tmp/softarm_cli_test/nan.inp",
+  for (const std::string& args : {"export " + rra + " --pressure-kPa nan -o /tmp/softarm_cli_test/nan.inp",
                                  "export " + rra + " --pressure-kPa inf -o /tmp/softarm_cli_test/inf.inp",
                                  "export " + rra + " --pressure-kPa -5 -o /tmp/softarm_cli_test/neg.inp",
                                  "simulate " + rra + " --mesh-level 0 -o /tmp/softarm_cli_test/l0",
@@ -186,7 +187,7 @@ TEST_CASE("softarm refuses non-finite and out-of-range options, naming the optio
 TEST_CASE("an output path that is a file or cannot be made is exit 2 naming the option, before any work", "[cli]") {
   const std::string file = write_config("not_a_directory", "x");
   const std::string source = std::string(SOFTARM_SOURCE_DIR);
-  for (const std::string args : {"design " + source + "/configs/thesis_requirements.json --fidelity fast -o " + file,
+  for (const std::string& args : {"design " + source + "/configs/thesis_requirements.json --fidelity fast -o " + file,
                                  "design " + source + "/configs/thesis_requirements.json --fidelity fast -o " + file + "/sub",
                                  "study " + source + "/configs/studies/end_cap_thickness.json -o " + file}) {
     const auto r = run_softarm(args);
@@ -306,6 +307,14 @@ TEST_CASE("simulate --fidelity fast poses the thesis SPL by the spatial rod", "[
   CHECK(r.output.find("nan") == std::string::npos);
   std::ifstream summary("/tmp/softarm_cli_test/spl_rod/summary.json");
   CHECK(summary.good());
+  // The rod's centreline at every output, for ParaView: one poly-line per curve.csv row.
+  std::ifstream curve("/tmp/softarm_cli_test/spl_rod/curve.csv"), centreline("/tmp/softarm_cli_test/spl_rod/centreline.vtu");
+  const long rows = std::count(std::istreambuf_iterator<char>(curve), std::istreambuf_iterator<char>(), '\n') - 1;
+  std::stringstream vtu;
+  vtu << centreline.rdbuf();
+  CHECK(rows >= 2);
+  CHECK_THAT(vtu.str(), Catch::Contains("NumberOfCells=\"" + std::to_string(rows) + "\""));
+  CHECK_THAT(vtu.str(), Catch::Contains("Name=\"load_fraction\""));
   // The ladder picks the mesh: a hand-set one as well is refused, naming the option.
   const auto both = run_softarm("simulate " + config + " --fidelity fast --mesh-level 2");
   CHECK(both.exit_code == 2);

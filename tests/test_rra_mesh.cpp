@@ -497,6 +497,30 @@ TEST_CASE("write_vtu: well-formed ParaView file with the right counts", "[rra_me
   fs::remove_all(folder);
 }
 
+TEST_CASE("write_polyline_vtu: a rod's centrelines as poly-lines with a value per line", "[rra_mesh]") {
+  namespace fs = std::filesystem;
+  const fs::path file = fs::temp_directory_path() / ("softarm_polyline_" + std::to_string(::getpid()) + ".vtu");
+  const std::vector<std::vector<Eigen::Vector3d>> lines = {
+      {{0, 0, 100}, {0, 0, 50}, {0, 0, 0}},                        // at rest, hanging from z = 100
+      {{0, 0, 100}, {5, 0, 52}, {18, 1, 6}, {30, 2, -30}}};        // bent: another node count
+  write_polyline_vtu(file.string(), lines, {"pressure_kPa", 1, {0.0, 206.8}});
+  const std::string text = read_text(file);
+  CHECK_THAT(text, Catch::Contains("NumberOfPoints=\"7\" NumberOfCells=\"2\""));
+  CHECK(data_array(text, "types") == std::vector<double>{4.0, 4.0});  // VTK_POLY_LINE
+  CHECK(data_array(text, "offsets") == std::vector<double>{3.0, 7.0});
+  CHECK(data_array(text, "connectivity") == std::vector<double>{0, 1, 2, 3, 4, 5, 6});
+  CHECK(data_array(text, "pressure_kPa") == std::vector<double>{0.0, 206.8});
+  const auto points_at = text.find('>', text.find("<DataArray", text.find("<Points>"))) + 1;
+  std::istringstream points(text.substr(points_at, text.find("</DataArray>", points_at) - points_at));
+  std::vector<double> xyz;
+  for (double v; points >> v;) xyz.push_back(v);
+  REQUIRE(xyz.size() == 21);
+  CHECK(xyz[18] == 30.0);  // the bent line's tip, written exactly
+  CHECK(xyz[20] == -30.0);
+  CHECK_THROWS_AS(write_polyline_vtu(file.string(), lines, {"pressure_kPa", 1, {0.0}}), std::invalid_argument);
+  fs::remove(file);
+}
+
 TEST_CASE("RRA Q2 mesh: mid-edge nodes on the ring circles make the ring volume O(h^4)", "[rra_mesh]") {
   // Volume of revolution of the rings with the 9-node map (3×3 Gauss), against
   // the exact tori. Polygonal (chord) rings lose ~10 % at level 1 (see above);

@@ -76,18 +76,13 @@ nlohmann::json design_json(const DesignConfig& c, const std::vector<double>& x) 
   return j;
 }
 
+/// optimum_payload_pose.vtu: the arm's centreline lifting its payload capacity (in the bend's plane,
+/// x and z), with the payload as cell data.
 void write_pose_vtu(const std::string& dir, const objectives::ArmMeasures& m) {
-  std::ofstream out = open_output_file(dir, "optimum_payload_pose.vtu");
-  const std::size_t n = m.payload_tip_x_mm.size();
-  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-      << "<UnstructuredGrid><Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"1\">\n"
-      << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (std::size_t i = 0; i < n; ++i) out << m.payload_tip_x_mm[i] << " 0 " << m.payload_tip_z_mm[i] << "\n";
-  out << "</DataArray></Points>\n<Cells><DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
-  for (std::size_t i = 0; i < n; ++i) out << i << " ";
-  out << "\n</DataArray><DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">" << n
-      << "</DataArray><DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">4</DataArray></Cells>\n"
-      << "</Piece></UnstructuredGrid></VTKFile>\n";
+  std::vector<Eigen::Vector3d> line;
+  for (std::size_t i = 0; i < m.payload_tip_x_mm.size() && i < m.payload_tip_z_mm.size(); ++i)
+    line.emplace_back(m.payload_tip_x_mm[i], 0.0, m.payload_tip_z_mm[i]);
+  fem::write_polyline_vtu(dir + "/optimum_payload_pose.vtu", {line}, {"payload_kg", 1, {m.payload_kg}});
 }
 
 std::vector<std::vector<std::string>> constraint_rows(const DesignConfig& c, const objectives::ArmMeasures& m,
@@ -262,7 +257,6 @@ void write_design_geometry(const DesignRun& run) {
   mesh_options.order = 1;
   const fem::Mesh mesh = fem::mesh_spl(make_candidate(c, run.optimum_x).design, mesh_options);
   fem::write_vtu((std::filesystem::path(dir) / "optimum_mesh.vtu").string(), mesh, mesh.X, {}, {});
-
 }
 
 /// The report's opening verdict: whether the design meets every requirement, on which model.

@@ -168,11 +168,57 @@ std::string vtu_document(const Mesh& mesh, const Eigen::MatrixXd& x, const std::
   return out.str();
 }
 
-}  // namespace
+/// Polylines: one VTK_POLY_LINE cell per line, its points in order; `per_line` as cell data.
+std::string polyline_document(const std::vector<std::vector<Eigen::Vector3d>>& lines, const NamedField& per_line) {
+  if (per_line.components != 1 || per_line.values.size() != lines.size() || per_line.name.empty())
+    throw std::invalid_argument("write_polyline_vtu: one named value per line expected, got " +
+                                std::to_string(per_line.values.size()) + " for " + std::to_string(lines.size()) + " lines");
+  std::vector<double> points;
+  std::vector<long long> connectivity, offsets;
+  for (const auto& line : lines) {
+    for (const Eigen::Vector3d& p : line) {
+      connectivity.push_back(static_cast<long long>(points.size() / 3));
+      points.insert(points.end(), {p.x(), p.y(), p.z()});
+    }
+    offsets.push_back(static_cast<long long>(connectivity.size()));
+  }
+  constexpr int vtk_poly_line = 4;
+  VtuText out;
+  out.line("<?xml version=\"1.0\"?>");
+  out.line("<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">");
+  out.line("  <UnstructuredGrid>");
+  out.line("    <Piece NumberOfPoints=\"" + std::to_string(points.size() / 3) + "\" NumberOfCells=\"" +
+           std::to_string(lines.size()) + "\">");
+  out.line("      <CellData Scalars=\"" + xml_escaped(per_line.name) + "\">");
+  out.open_array("Float64", per_line.name, 1);
+  out.tuples(per_line.values, 1);
+  out.close_array();
+  out.line("      </CellData>");
+  out.line("      <Points>");
+  out.open_array("Float64", "", 3);
+  out.tuples(points, 3);
+  out.close_array();
+  out.line("      </Points>");
+  out.line("      <Cells>");
+  out.open_array("Int64", "connectivity", 1);
+  out.tuples(connectivity, 1);
+  out.close_array();
+  out.open_array("Int64", "offsets", 1);
+  out.tuples(offsets, 1);
+  out.close_array();
+  out.open_array("UInt8", "types", 1);
+  out.tuples(std::vector<long long>(lines.size(), vtk_poly_line), 1);
+  out.close_array();
+  out.line("      </Cells>");
+  out.line("    </Piece>");
+  out.line("  </UnstructuredGrid>");
+  out.line("</VTKFile>");
+  return out.str();
+}
 
-void write_vtu(const std::string& path, const Mesh& mesh, const Eigen::MatrixXd& current_positions,
-               const std::vector<NamedField>& point_fields, const std::vector<NamedField>& cell_fields) {
-  const std::string text = vtu_document(mesh, current_positions, point_fields, cell_fields);
+/// Writes `text` to `path` through a temporary file in the same folder and a rename, so that a
+/// reader never sees half a file; missing parent folders are created.
+void write_atomically(const std::string& path, const std::string& text, const char* who) {
   namespace fs = std::filesystem;
   const fs::path target(path);
   std::error_code ignored;
@@ -185,15 +231,27 @@ void write_vtu(const std::string& path, const Mesh& mesh, const Eigen::MatrixXd&
     file.close();
     if (!file) {
       fs::remove(temporary, ignored);
-      throw std::runtime_error("write_vtu: cannot write '" + path + "'");
+      throw std::runtime_error(std::string(who) + ": cannot write '" + path + "'");
     }
   }
   std::error_code error;
   fs::rename(temporary, target, error);
   if (error) {
     fs::remove(temporary, ignored);
-    throw std::runtime_error("write_vtu: cannot move the output into '" + path + "': " + error.message());
+    throw std::runtime_error(std::string(who) + ": cannot move the output into '" + path + "': " + error.message());
   }
+}
+
+}  // namespace
+
+void write_vtu(const std::string& path, const Mesh& mesh, const Eigen::MatrixXd& current_positions,
+               const std::vector<NamedField>& point_fields, const std::vector<NamedField>& cell_fields) {
+  write_atomically(path, vtu_document(mesh, current_positions, point_fields, cell_fields), "write_vtu");
+}
+
+void write_polyline_vtu(const std::string& path, const std::vector<std::vector<Eigen::Vector3d>>& lines,
+                        const NamedField& per_line) {
+  write_atomically(path, polyline_document(lines, per_line), "write_polyline_vtu");
 }
 
 }  // namespace softarm::fem

@@ -30,4 +30,11 @@ struct NamedField {
 void write_vtu(const std::string& path, const Mesh& mesh, const Eigen::MatrixXd& current_positions,
                const std::vector<NamedField>& point_fields, const std::vector<NamedField>& cell_fields);
 
+/// Polylines, e.g. a rod's centreline at each output state, as VTK_POLY_LINE cells (line i's points
+/// in order, mm), with `per_line` (one component, one value per line: "pressure_kPa") as cell data
+/// for ParaView to colour or threshold the states by. Written as write_vtu writes; throws
+/// std::invalid_argument when `per_line` does not give one value per line.
+void write_polyline_vtu(const std::string& path, const std::vector<std::vector<Eigen::Vector3d>>& lines,
+                        const NamedField& per_line);
+
 }  // namespace softarm::fem

@@ -102,6 +102,7 @@ CellRodState solve_cell_rod(const CellRodSpec& spec, double pressure_kPa) {
   out.bending_angle_deg = theta[n] * 180 / kPi;
   out.tip_along_bend_mm = r[n].x();
   out.tip_z_mm = r[n].y();
+  for (const Eigen::Vector2d& node : r) out.centreline_mm.emplace_back(node.x(), 0.0, node.y());
   return out;
 }
 

@@ -17,6 +17,7 @@
 // What it leaves out, by construction: the caps' and the clamp's own disturbance of
 // the section's response (unless end tables give it: EndTable), the taper within one pitch, the axial force of the weight
 // on λ₀ and κ₀, and anything out of the bend plane.
+#include <Eigen/Core>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,9 @@ struct CellRodState {
   double bending_angle_deg = 0;      // tip tangent against the rest tangent, > 0 towards the bend
   double tip_along_bend_mm = 0, tip_z_mm = 0;  // the free end's centre (rest: 0, 0)
   double tip_across_bend_mm = 0;     // along e_z × bend: 0 in one plane, the spatial rod's sideways sag
+  /// The centreline's nodes from the clamp to the tip, mm: (along the bend, across it, z) for the planar
+  /// rod (across: 0), the scene frame for the spatial rod (tca_cell_rod.cpp turns both into it).
+  std::vector<Eigen::Vector3d> centreline_mm;
   int iterations = 0;                // shape–moment fixed-point iterations
   bool ok = false;
   std::string diagnosis;             // why not ok

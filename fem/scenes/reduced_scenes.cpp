@@ -120,7 +120,8 @@ ReducedSplResult run_reduced_spl(const SplSceneSpec& spec, int nodes_per_segment
   ReducedSplResult out;
   const int steps = std::max<int>(8, static_cast<int>(spec.output_levels.size()));
   out.final_state = rod.follow(load, steps, [&](double f, const SpatialRodState& s) {
-    out.curve.push_back({f, s.position.back(), rod.tilt_deg(s, load, tip), s.newton_iterations});
+    out.curve.push_back({f, s.position.back(), rod.tilt_deg(s, load, tip), s.newton_iterations,
+                         s.position});
   });
   const SpatialRodState& s = out.final_state;
   if (!s.position.empty()) {

@@ -187,7 +187,7 @@ SplCellRodResult pose_spl_cell_rod(const SplCells& cells, const std::vector<doub
     }
     last = s;
     const int tip = static_cast<int>(s.position.size()) - 1;
-    out.curve.push_back({t, s.position[tip], pose_at(s, tip).tilt_deg, s.iterations});
+    out.curve.push_back({t, s.position[tip], pose_at(s, tip).tilt_deg, s.iterations, s.position});
   }
   out.rod_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.converged = out.curve.size() == levels.size();

@@ -54,6 +54,7 @@ struct SplState {
   Eigen::Vector3d tip_position_mm = Eigen::Vector3d::Zero();
   double tip_tilt_deg = 0;
   int newton_iterations = 0;
+  std::vector<Eigen::Vector3d> centreline_mm;  // the rods' nodes from the shoulder to the tip (empty for the FEM)
 };
 
 struct SplResult {

@@ -49,6 +49,7 @@ CellRodState solve_spatial_tca(const SpatialCellRodSpec& rod, const Eigen::Vecto
   out.tip_along_bend_mm = tip.dot(bend);
   out.tip_across_bend_mm = tip.dot(Eigen::Vector3d::UnitZ().cross(bend));
   out.tip_z_mm = tip.z();
+  out.centreline_mm = s.position;
   out.ok = true;
   return out;
 }
@@ -158,7 +159,11 @@ CellRodTcaResult pose_cell_rod_tca(const TcaSceneSpec& spec, const TcaRodCells& 
   std::vector<TcaState> states;
   SpatialCellRodState last;
   for (double p : pressures) {
-    const CellRodState s = out.spatial ? solve_spatial_tca(spatial, bend, peak, p, last) : solve_cell_rod(rod, p);
+    CellRodState s = out.spatial ? solve_spatial_tca(spatial, bend, peak, p, last) : solve_cell_rod(rod, p);
+    if (!out.spatial) {  // the planar rod's (along the bend, 0, z) into the scene frame
+      const Eigen::Vector3d along = bend.norm() > 0 ? bend : Eigen::Vector3d::UnitX();
+      for (Eigen::Vector3d& node : s.centreline_mm) node = node.x() * along + node.z() * Eigen::Vector3d::UnitZ();
+    }
     if (!s.ok) {
       out.diagnosis = s.diagnosis;
       for (const auto& c : cells)
