@@ -67,7 +67,40 @@ class VtuText {
     }
   }
   void line(const std::string& s) { text_ += s + '\n'; }
-  const std::string& str() const { return text_; }
+  /// The document's head, up to the piece of `points` points and `cells` cells.
+  void open_piece(std::size_t points, std::size_t cells) {
+    line("<?xml version=\"1.0\"?>");
+    line("<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">");
+    line("  <UnstructuredGrid>");
+    line("    <Piece NumberOfPoints=\"" + std::to_string(points) + "\" NumberOfCells=\"" + std::to_string(cells) + "\">");
+  }
+  /// The points (3 per point) and the cells: connectivity (`per_row` a line), end offsets, VTK types.
+  void points_and_cells(const std::vector<double>& xyz, const std::vector<long long>& connectivity, int per_row,
+                        const std::vector<long long>& offsets, const std::vector<long long>& types) {
+    line("      <Points>");
+    open_array("Float64", "", 3);
+    tuples(xyz, 3);
+    close_array();
+    line("      </Points>");
+    line("      <Cells>");
+    open_array("Int64", "connectivity", 1);
+    tuples(connectivity, per_row);
+    close_array();
+    open_array("Int64", "offsets", 1);
+    tuples(offsets, 1);
+    close_array();
+    open_array("UInt8", "types", 1);
+    tuples(types, 1);
+    close_array();
+    line("      </Cells>");
+  }
+  /// Closes the piece and the document; its whole text.
+  const std::string& close_piece() {
+    line("    </Piece>");
+    line("  </UnstructuredGrid>");
+    line("</VTKFile>");
+    return text_;
+  }
 
  private:
   std::string text_;
@@ -114,11 +147,7 @@ std::string vtu_document(const Mesh& mesh, const Eigen::MatrixXd& x, const std::
   check_fields(cell_fields, num_cells, "cell", names);
 
   VtuText out;
-  out.line("<?xml version=\"1.0\"?>");
-  out.line("<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">");
-  out.line("  <UnstructuredGrid>");
-  out.line("    <Piece NumberOfPoints=\"" + std::to_string(num_nodes) + "\" NumberOfCells=\"" +
-           std::to_string(num_cells) + "\">");
+  out.open_piece(num_nodes, num_cells);
 
   auto write_fields = [&out](const std::vector<NamedField>& fields) {
     for (const auto& f : fields) {
@@ -141,31 +170,12 @@ std::string vtu_document(const Mesh& mesh, const Eigen::MatrixXd& x, const std::
   write_fields(cell_fields);
   out.line("      </CellData>");
 
-  out.line("      <Points>");
-  out.open_array("Float64", "", 3);
-  out.tuples(as_3d(x), 3);
-  out.close_array();
-  out.line("      </Points>");
-
   const int npe = mesh.nodes_per_element;
   std::vector<long long> offsets, types(num_cells, cell_type);
   for (std::size_t e = 1; e <= num_cells; ++e) offsets.push_back(static_cast<long long>(e) * npe);
-  out.line("      <Cells>");
-  out.open_array("Int64", "connectivity", 1);
-  out.tuples(std::vector<long long>(mesh.connectivity.begin(), mesh.connectivity.end()), npe);
-  out.close_array();
-  out.open_array("Int64", "offsets", 1);
-  out.tuples(offsets, 1);
-  out.close_array();
-  out.open_array("UInt8", "types", 1);
-  out.tuples(types, 1);
-  out.close_array();
-  out.line("      </Cells>");
-
-  out.line("    </Piece>");
-  out.line("  </UnstructuredGrid>");
-  out.line("</VTKFile>");
-  return out.str();
+  out.points_and_cells(as_3d(x), std::vector<long long>(mesh.connectivity.begin(), mesh.connectivity.end()), npe,
+                       offsets, types);
+  return out.close_piece();
 }
 
 /// Polylines: one VTK_POLY_LINE cell per line, its points in order; `per_line` as cell data.
@@ -184,36 +194,14 @@ std::string polyline_document(const std::vector<std::vector<Eigen::Vector3d>>& l
   }
   constexpr int vtk_poly_line = 4;
   VtuText out;
-  out.line("<?xml version=\"1.0\"?>");
-  out.line("<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">");
-  out.line("  <UnstructuredGrid>");
-  out.line("    <Piece NumberOfPoints=\"" + std::to_string(points.size() / 3) + "\" NumberOfCells=\"" +
-           std::to_string(lines.size()) + "\">");
+  out.open_piece(points.size() / 3, lines.size());
   out.line("      <CellData Scalars=\"" + xml_escaped(per_line.name) + "\">");
   out.open_array("Float64", per_line.name, 1);
   out.tuples(per_line.values, 1);
   out.close_array();
   out.line("      </CellData>");
-  out.line("      <Points>");
-  out.open_array("Float64", "", 3);
-  out.tuples(points, 3);
-  out.close_array();
-  out.line("      </Points>");
-  out.line("      <Cells>");
-  out.open_array("Int64", "connectivity", 1);
-  out.tuples(connectivity, 1);
-  out.close_array();
-  out.open_array("Int64", "offsets", 1);
-  out.tuples(offsets, 1);
-  out.close_array();
-  out.open_array("UInt8", "types", 1);
-  out.tuples(std::vector<long long>(lines.size(), vtk_poly_line), 1);
-  out.close_array();
-  out.line("      </Cells>");
-  out.line("    </Piece>");
-  out.line("  </UnstructuredGrid>");
-  out.line("</VTKFile>");
-  return out.str();
+  out.points_and_cells(points, connectivity, 1, offsets, std::vector<long long>(lines.size(), vtk_poly_line));
+  return out.close_piece();
 }
 
 /// Writes `text` to `path` through a temporary file in the same folder and a rename, so that a
