@@ -4,6 +4,7 @@
 #include <iomanip>
 
 #include "engine/path_summary.hpp"
+#include "engine/report/deformed_series.hpp"
 #include "engine/report/output_files.hpp"
 #include "fem/io/vtu_writer.hpp"
 
@@ -89,7 +90,13 @@ nlohmann::json write_rra_summary(const fem::SceneConfig& config, const fem::RraR
   summary["solver"]["energy_evaluations"] = r.timings.evaluations;
   add_failure_json(summary, r.path);
   write_json_file(dir, "summary.json", summary);
-  if (config.output.vtu) write_vtu(dir + "/deformed.vtu", r);
+  std::string series;
+  if (config.output.vtu) {
+    write_vtu(dir + "/deformed.vtu", r);
+    std::vector<double> pressures;
+    for (const auto& p : r.curve) pressures.push_back(p.pressure_kPa);
+    series = write_deformed_series(dir, r.mesh, r.curve_positions, pressures);
+  }
 
   out << "\noutcome: " << fem::to_string(r.path.outcome) << " — " << r.path.diagnosis << "\n";
   if (!r.curve.empty())
@@ -100,7 +107,7 @@ nlohmann::json write_rra_summary(const fem::SceneConfig& config, const fem::RraR
       << "model: axisymmetric " << r.element_name << ", " << r.mesh.num_elements() << " elements, " << r.dofs << " dofs; "
       << r.path.path.stats.steps << " load steps, " << r.path.path.stats.newton_iterations << " Newton iterations, "
       << std::setprecision(3) << r.timings.total_s << " s\n"
-      << "written: " << dir << "/curve.csv, " << dir << "/summary.json" << (config.output.vtu ? ", " + dir + "/deformed.vtu" : "")
+      << "written: " << dir << "/curve.csv, " << dir << "/summary.json" << (config.output.vtu ? ", " + dir + "/deformed.vtu" : "") << series
       << "\n";
   return summary;
 }

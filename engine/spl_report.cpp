@@ -4,6 +4,7 @@
 #include <iomanip>
 
 #include "engine/path_summary.hpp"
+#include "engine/report/deformed_series.hpp"
 #include "engine/report/output_files.hpp"
 #include "fem/io/vtu_writer.hpp"
 #include "fem/mesh/tca_mesher.hpp"
@@ -88,7 +89,11 @@ nlohmann::json write_spl_summary(const fem::SceneConfig& config, const fem::SplR
                   {"assembly", r.timings.assembly_s}, {"factorize", r.path.factorize_s}, {"total", r.timings.total_s}}}};
   add_failure_json(summary, r.path);
   write_json_file(dir, "summary.json", summary);
+  std::string series;
   if (config.output.vtu) {
+    std::vector<double> load_fractions;
+    for (const auto& s : r.curve) load_fractions.push_back(s.load_fraction);
+    series = write_deformed_series(dir, r.mesh, r.curve_positions, load_fractions);
     Eigen::MatrixXd x(r.mesh.num_nodes(), 3);
     for (int n = 0; n < r.mesh.num_nodes(); ++n) x.row(n) = r.final_positions.segment<3>(3 * n).transpose();
     std::vector<double> stretch, stress;
@@ -108,7 +113,7 @@ nlohmann::json write_spl_summary(const fem::SceneConfig& config, const fem::SplR
       << r.mesh.num_elements() << " elements, " << r.dofs << " dofs; " << r.path.path.stats.steps << " load steps, "
       << r.path.path.stats.newton_iterations << " Newton iterations, " << r.timings.total_s << " s\n"
       << "written: " << dir << "/curve.csv, " << dir << "/summary.json"
-      << (config.output.vtu ? ", " + dir + "/deformed.vtu" : "") << "\n";
+      << (config.output.vtu ? ", " + dir + "/deformed.vtu" : "") << series << "\n";
   return summary;
 }
 

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "engine/path_summary.hpp"
+#include "engine/report/deformed_series.hpp"
 #include "engine/report/output_files.hpp"
 #include "fem/io/vtu_writer.hpp"
 #include "fem/mesh/tca_mesher.hpp"
@@ -110,7 +111,13 @@ nlohmann::json write_tca_summary(const fem::SceneConfig& config, const fem::TcaR
                   {"assembly", r.timings.assembly_s}, {"factorize", r.path.factorize_s}, {"total", r.timings.total_s}}}};
   add_failure_json(summary, r.path);
   write_json_file(dir, "summary.json", summary);
-  if (config.output.vtu) write_vtu(dir + "/deformed.vtu", r);
+  std::string series;
+  if (config.output.vtu) {
+    write_vtu(dir + "/deformed.vtu", r);
+    std::vector<double> pressures;
+    for (const auto& s : r.curve) pressures.push_back(s.pressure_kPa);
+    series = write_deformed_series(dir, r.mesh, r.curve_positions, pressures);
+  }
 
   out << "\noutcome: " << fem::to_string(r.path.outcome) << " — " << r.path.diagnosis << "\n";
   out << std::fixed << std::setprecision(2);
@@ -131,7 +138,7 @@ nlohmann::json write_tca_summary(const fem::SceneConfig& config, const fem::TcaR
       << r.path.path.stats.steps << " load steps, " << r.path.path.stats.newton_iterations << " Newton iterations, "
       << std::setprecision(1) << r.timings.total_s << " s\n"
       << "written: " << dir << "/curve.csv, " << dir << "/summary.json"
-      << (config.output.vtu ? ", " + dir + "/deformed.vtu" : "") << "\n";
+      << (config.output.vtu ? ", " + dir + "/deformed.vtu" : "") << series << "\n";
   return summary;
 }
 

@@ -345,11 +345,25 @@ TEST_CASE("simulate keeps a 3D path as it goes: a rerun resumes it, a changed sc
   const std::string first_curve = curve();
   REQUIRE(std::count(first_curve.begin(), first_curve.end(), '\n') >= 4);  // a header, rest and 3 outputs
 
+  // deformed.pvd: a frame per curve row, in order of pressure, each frame's VTU written.
+  const auto pvd_frames = [&] {
+    std::ifstream in(dir + "/deformed.pvd");
+    std::vector<std::string> files;
+    for (std::string line; std::getline(in, line);)
+      if (const auto at = line.find("file=\""); at != std::string::npos)
+        files.push_back(line.substr(at + 6, line.find('"', at + 6) - at - 6));
+    return files;
+  };
+  const auto frames = pvd_frames();
+  CHECK(static_cast<long>(frames.size()) == std::count(first_curve.begin(), first_curve.end(), '\n') - 1);
+  for (const auto& frame : frames) CHECK(std::filesystem::is_regular_file(dir + "/" + frame));
+
   const auto again = run_softarm("simulate " + file + " -o " + dir);
   INFO(again.output);
   CHECK(again.exit_code == 0);
   CHECK(again.output.find("resumed ") != std::string::npos);
   CHECK(curve() == first_curve);  // the same states, replayed
+  CHECK(pvd_frames() == frames);  // and the same frames
   std::ifstream summary(dir + "/summary.json");
   CHECK(nlohmann::json::parse(summary).at("solver").at("resumed_states").get<int>() > 4);
 

@@ -119,6 +119,7 @@ RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress) {
   out.path = run_pressure_path(problem, {chamber.get()}, load, x, path, [&](const PressureState& s, const Vector& xs) {
     if (!s.is_output) return;
     out.curve.push_back(curve_point(s, mesh, *elastic, xs, free_node, sign, spec.peak_averaging_radius_mm));
+    out.curve_positions.push_back(xs);
     if (progress) progress(out.curve.back());
   });
   // A path that stopped early also reports the last state it reached: x is the state of the
@@ -128,7 +129,10 @@ RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress) {
     PressureState last = out.path.history.back();
     for (const PressureState& s : out.path.beyond_limit)
       if (s.pressure_kPa > last.pressure_kPa) last = s;
-    if (!last.is_output) out.curve.push_back(curve_point(last, mesh, *elastic, x, free_node, sign, spec.peak_averaging_radius_mm));
+    if (!last.is_output) {
+      out.curve.push_back(curve_point(last, mesh, *elastic, x, free_node, sign, spec.peak_averaging_radius_mm));
+      out.curve_positions.push_back(x);
+    }
   }
   out.timings.solve_s = since(t_solve);
   out.timings.assembly_s = problem.assembly_seconds();

@@ -53,6 +53,7 @@ struct RraResult {
   std::vector<RraCurvePoint> curve;     // at the requested output pressures (and the last reached state)
   PressurePathResult path;
   Vector final_positions;
+  std::vector<Vector> curve_positions;  // the positions at each curve point (deformed.pvd's frames)
   std::vector<ElementResult> final_element_results;
   std::string element_name;
   double tube_mass_kg = 0, ring_mass_kg = 0;

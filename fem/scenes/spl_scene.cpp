@@ -90,16 +90,20 @@ SplResult run_spl_scene(const SplSceneSpec& spec, const std::function<void(const
   const auto t_solve = Clock::now();
   const auto state_of = [&](const PressureState& s, const Vector& xs) {
     const FacePose tip = user_pose(tip_nodes, xs);
-    return SplState{s.pressure_kPa / path.max_pressure_kPa, tip.position_mm, tip.tilt_deg, s.newton_iterations};
+    return SplState{s.pressure_kPa / path.max_pressure_kPa, tip.position_mm, tip.tilt_deg, s.newton_iterations, {}};
   };
   PressureState last;
   out.path = run_pressure_path(problem, chambers.loaded, load, x, path, [&](const PressureState& s, const Vector& xs) {
     last = s;
     if (!s.is_output) return;
     out.curve.push_back(state_of(s, xs));
+    out.curve_positions.push_back(rotated_about_z(xs, theta));
     if (progress) progress(out.curve.back());
   });
-  if (!last.is_output) out.curve.push_back(state_of(last, x));
+  if (!last.is_output) {
+    out.curve.push_back(state_of(last, x));
+    out.curve_positions.push_back(rotated_about_z(x, theta));
+  }
   out.timings.solve_s = since(t_solve);
   out.timings.assembly_s = problem.assembly_seconds();
   out.timings.factorize_s = out.path.factorize_s;

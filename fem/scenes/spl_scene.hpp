@@ -69,6 +69,7 @@ struct SplResult {
   std::vector<std::pair<std::string, double>> part_mass_kg;
   double mass_kg = 0;                 // arm without payload
   Vector final_positions;
+  std::vector<Vector> curve_positions;  // user frame, at each curve state (deformed.pvd's frames)
   std::vector<ElementResult> final_element_results;
   SceneTimings timings;
 };

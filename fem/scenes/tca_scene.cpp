@@ -145,9 +145,13 @@ TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
     out.states.push_back(state_of(s, xs));
     if (!s.is_output) return;
     out.curve.push_back(out.states.back());
+    out.curve_positions.push_back(rotated_about_z(xs, theta));
     if (progress) progress(out.curve.back());
   });
-  if (!out.states.empty() && !out.states.back().is_output) out.curve.push_back(out.states.back());
+  if (!out.states.empty() && !out.states.back().is_output) {
+    out.curve.push_back(out.states.back());
+    out.curve_positions.push_back(rotated_about_z(x, theta));
+  }
   out.timings.solve_s = since(t_solve);
   out.timings.assembly_s = problem.assembly_seconds();
   out.timings.factorize_s = out.path.factorize_s;

@@ -87,6 +87,7 @@ struct TcaResult {
   std::vector<std::pair<std::string, double>> part_mass_kg;  // full body
   double mass_kg = 0;
   Vector final_positions;             // user frame
+  std::vector<Vector> curve_positions;  // user frame, at each curve state (deformed.pvd's frames)
   std::vector<ElementResult> final_element_results;
   SceneTimings timings;
 };
