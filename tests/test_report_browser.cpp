@@ -109,7 +109,8 @@ TEST_CASE("a report's plots are laid out, drawn and under their headings in Chro
         CHECK(line.svg_title == "Bending angle vs pressure");
         CHECK(line.heading == "Pressure\xE2\x80\x93" "bending curves");  // non-ASCII survives the round trip
         CHECK(line.caption.empty());
-        CHECK(line.width / line.height == Approx(640.0 / 400.0).epsilon(0.01));  // scaled, not clipped
+        // Scaled, not clipped: 640 x 400 px and the two-row legend below the axes (2 x 16 + 14 px).
+        CHECK(line.width / line.height == Approx(640.0 / (400.0 + 2 * 16 + 14)).epsilon(0.01));
         CHECK(line.marks > 25);
         CHECK(line.marks_by_element.count("path"));
         CHECK(line.marks_by_element.at("text") >= 10);  // ticks, axis labels, legend, title

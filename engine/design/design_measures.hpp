@@ -20,5 +20,8 @@ struct DesignMeasure {
 const std::vector<DesignMeasure>& design_measures();
 /// The measure called `name`; an unknown name raises InputError(field) listing the known ones.
 const DesignMeasure& design_measure(const std::string& name, const std::string& field);
+/// A measure's name as an axis label: words and the unit its suffix states ("mass_kg" → "mass (kg)",
+/// "burst_utilisation" → "burst utilisation").
+std::string measure_label(const std::string& name);
 
 }  // namespace softarm::engine

@@ -381,7 +381,7 @@ void add_curves(report::HtmlDocument& doc, const DesignRun& run) {
   report::LinePlot conv;
   conv.title = "Objective per evaluation";
   conv.x_label = "evaluation";
-  conv.y_label = (c.maximise ? "−" : "") + c.objective_measure;
+  conv.y_label = c.maximise ? "−" + measure_label(c.objective_measure) + ", maximised" : measure_label(c.objective_measure);
   report::Series feas = series("feasible", {}, {}), infeas = series("infeasible", {}, {});
   feas.style = infeas.style = report::Series::Style::markers;
   infeas.marker = report::Series::Marker::cross;

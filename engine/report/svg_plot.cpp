@@ -272,6 +272,47 @@ std::string tick_label(double value, double step) {
     return format_number(value, std::clamp(digits, 1, 15));
 }
 
+/// Rows a line plot's legend needs (its labelled series).
+std::size_t legend_rows(const LinePlot& plot) {
+    return static_cast<std::size_t>(std::count_if(plot.series.begin(), plot.series.end(),
+                                                  [](const Series& s) { return !s.label.empty(); }));
+}
+
+constexpr double legend_row_px = 16;
+
+/// The legend of `plot` in a box at (x, y), one row per labelled series (a series with nothing to
+/// draw says so), no wider than max_width.
+std::string legend_svg(const LinePlot& plot, const std::vector<std::string>& colours, double x, double y,
+                       double max_width) {
+    std::vector<std::size_t> entries;
+    for (std::size_t i = 0; i < plot.series.size(); ++i)
+        if (!plot.series[i].label.empty()) entries.push_back(i);
+    if (entries.empty()) return "";
+    const auto legend_text = [&](const Series& s) {
+        const std::size_t n = std::min(s.x.size(), s.y.size());
+        for (std::size_t i = 0; i < n; ++i)
+            if (std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && (!plot.log_y || s.y[i] > 0)) return s.label;
+        return s.label + " (no data)";
+    };
+    const std::size_t max_chars = static_cast<std::size_t>(std::max(4.0, (max_width - 40) / char_width_px));
+    double widest = 0;
+    for (const std::size_t i : entries) widest = std::max(widest, text_width(truncate(legend_text(plot.series[i]), max_chars)));
+    const double box_w = widest + 40, box_h = entries.size() * legend_row_px + 8;
+    std::string out = "<g>\n<rect x=\"" + px(x) + "\" y=\"" + px(y) + "\" width=\"" + px(box_w) + "\" height=\"" +
+                      px(box_h) + "\" fill=\"#fff\" stroke=\"#ccc\"/>\n";
+    for (std::size_t k = 0; k < entries.size(); ++k) {
+        const Series& s = plot.series[entries[k]];
+        const std::string& colour = colours[entries[k]];
+        const double cy = y + 4 + legend_row_px * (k + 0.5);
+        if (s.style != Series::Style::markers)
+            out += "<path d=\"M" + px(x + 6) + " " + px(cy) + "h22\" stroke=\"" + colour + "\" stroke-width=\"1.8\"" +
+                   (s.dashed ? " stroke-dasharray=\"6 4\"" : "") + "/>\n";
+        if (s.style != Series::Style::line) out += marker_element(s.marker, marker_path(s.marker, x + 17, cy, 3), colour);
+        out += text(x + 34, cy + 4, truncate(legend_text(s), max_chars));
+    }
+    return out + "</g>\n";
+}
+
 std::string render_svg(const LinePlot& plot) {
     const int width = std::max(plot.width_px, 200), height = std::max(plot.height_px, 150);
     auto drawable = [&](double x, double y) { return std::isfinite(x) && std::isfinite(y) && (!plot.log_y || y > 0); };
@@ -309,7 +350,9 @@ std::string render_svg(const LinePlot& plot) {
     auto map_x = [&](double x) { return left + (x - xa.lo) / (xa.hi - xa.lo) * pw; };
     auto map_y = [&](double y) { return top + ph - (ya.to_axis(y) - ya.lo) / (ya.hi - ya.lo) * ph; };
 
-    std::string out = svg_open(width, height, plot.title.empty() ? "plot" : plot.title);
+    const std::size_t rows = legend_rows(plot);
+    const int legend_height = rows ? static_cast<int>(std::ceil(rows * legend_row_px + 14)) : 0;
+    std::string out = svg_open(width, height + legend_height, plot.title.empty() ? "plot" : plot.title);
     if (!plot.title.empty())
         out += text(width / 2.0, 21, plot.title, "text-anchor=\"middle\" font-size=\"14\" font-weight=\"bold\"");
 
@@ -389,37 +432,8 @@ std::string render_svg(const LinePlot& plot) {
         if (!marks.empty()) out += marker_element(s.marker, marks, colour);
     }
 
-    // Legend (top right, inside the plot area).
-    std::vector<std::size_t> entries;
-    for (std::size_t i = 0; i < plot.series.size(); ++i)
-        if (!plot.series[i].label.empty()) entries.push_back(i);
-    if (!entries.empty()) {
-        auto legend_text = [&](const Series& s) {
-            const std::size_t n = std::min(s.x.size(), s.y.size());
-            for (std::size_t i = 0; i < n; ++i)
-                if (drawable(s.x[i], s.y[i])) return s.label;
-            return s.label + " (no data)";
-        };
-        const std::size_t max_chars = static_cast<std::size_t>(std::max(4.0, (pw * 0.6 - 40) / char_width_px));
-        double widest = 0;
-        for (const std::size_t i : entries)
-            widest = std::max(widest, text_width(truncate(legend_text(plot.series[i]), max_chars)));
-        const double box_w = widest + 40, row = 16, box_h = entries.size() * row + 8;
-        const double bx = left + pw - box_w - 8, by = top + 8;
-        out += "<g>\n<rect x=\"" + px(bx) + "\" y=\"" + px(by) + "\" width=\"" + px(box_w) + "\" height=\"" +
-               px(box_h) + "\" fill=\"#fff\" fill-opacity=\"0.85\" stroke=\"#ccc\"/>\n";
-        for (std::size_t k = 0; k < entries.size(); ++k) {
-            const Series& s = plot.series[entries[k]];
-            const std::string& colour = colours[entries[k]];
-            const double cy = by + 4 + row * (k + 0.5);
-            if (s.style != Series::Style::markers)
-                out += "<path d=\"M" + px(bx + 6) + " " + px(cy) + "h22\" stroke=\"" + colour +
-                       "\" stroke-width=\"1.8\"" + (s.dashed ? " stroke-dasharray=\"6 4\"" : "") + "/>\n";
-            if (s.style != Series::Style::line) out += marker_element(s.marker, marker_path(s.marker, bx + 17, cy, 3), colour);
-            out += text(bx + 34, cy + 4, truncate(legend_text(s), max_chars));
-        }
-        out += "</g>\n";
-    }
+    // Legend: below the axes, where it hides no point and needs no truncation.
+    out += legend_svg(plot, colours, left, height + 2.0, width - left - 8);
     out += "</svg>\n";
     return out;
 }
