@@ -114,9 +114,7 @@ nlohmann::json write_tca_summary(const fem::SceneConfig& config, const fem::TcaR
   std::string series;
   if (config.output.vtu) {
     write_vtu(dir + "/deformed.vtu", r);
-    std::vector<double> pressures;
-    for (const auto& s : r.curve) pressures.push_back(s.pressure_kPa);
-    series = write_deformed_series(dir, r.mesh, r.curve_positions, pressures);
+    series = write_deformed_series(dir, r.mesh, r.curve_positions, pressures_of(r.curve));
   }
 
   out << "\noutcome: " << fem::to_string(r.path.outcome) << " — " << r.path.diagnosis << "\n";

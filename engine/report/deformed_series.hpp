@@ -15,4 +15,12 @@ namespace softarm::engine {
 std::string write_deformed_series(const std::string& directory, const fem::Mesh& mesh,
                                   const std::vector<Eigen::VectorXd>& positions, const std::vector<double>& times);
 
+/// The pressures of a scene's curve states, in kPa: the frames' times.
+template <class State>
+std::vector<double> pressures_of(const std::vector<State>& curve) {
+  std::vector<double> pressures;
+  for (const State& s : curve) pressures.push_back(s.pressure_kPa);
+  return pressures;
+}
+
 }  // namespace softarm::engine
