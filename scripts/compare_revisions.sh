@@ -53,9 +53,10 @@ binary_of() {
   echo "$tree/build/softarm"
 }
 
+# This checkout's build: the comparison tool, and softarm itself when NEW is left out.
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 new_arg=${args[1]:-}
 if [ -z "$new_arg" ]; then
-  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
   cmake --build build -j"$threads" --target softarm >&2
   new_arg=build/softarm
 fi
