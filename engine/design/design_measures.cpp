@@ -60,13 +60,11 @@ const DesignMeasure& design_measure(const std::string& name, const std::string& 
 std::string measure_label(const std::string& name) {
   static const std::pair<const char*, const char*> units[] = {{"_kg", "kg"}, {"_mm", "mm"}, {"_deg", "deg"}, {"_kPa", "kPa"}};
   std::string words = name, unit;
-  for (const auto& [suffix, symbol] : units) {
-    const std::string tail = suffix;
-    if (words.size() > tail.size() && words.compare(words.size() - tail.size(), tail.size(), tail) == 0) {
-      words.resize(words.size() - tail.size());
+  for (const auto& [suffix, symbol] : units)
+    if (words.ends_with(suffix)) {
+      words.resize(words.size() - std::char_traits<char>::length(suffix));
       unit = symbol;
     }
-  }
   std::replace(words.begin(), words.end(), '_', ' ');
   return unit.empty() ? words : words + " (" + unit + ")";
 }

@@ -16,10 +16,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 bool is_time_name(const std::string& name) {
-  const auto ends_with = [&](const std::string& tail) {
-    return name.size() >= tail.size() && name.compare(name.size() - tail.size(), tail.size(), tail) == 0;
-  };
-  return name == "seconds" || ends_with("_seconds") || ends_with("_s");
+  return name == "seconds" || name.ends_with("_seconds") || name.ends_with("_s");
 }
 
 namespace {
