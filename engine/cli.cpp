@@ -5,6 +5,7 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <regex>
 
 #include "engine/design/design_command.hpp"
 #include "fem/core/number_text.hpp"
@@ -134,9 +135,15 @@ int export_deck(const std::string& file, const std::string& deck_path, double pr
 
 void print_fields(const std::string& title) {
   std::cout << title << ":\n";
-  for (const auto& f : fem::JsonReader::documented_fields())
-    std::cout << f.path << "  (" << f.type << ", default " << f.default_value
+  std::vector<std::string> printed;
+  for (const auto& f : fem::JsonReader::documented_fields()) {
+    // A list's items print once, as "sweep[].values", whichever item declared them.
+    const std::string path = std::regex_replace(f.path, std::regex(R"(\[[0-9]+\])"), "[]");
+    if (std::find(printed.begin(), printed.end(), path) != printed.end()) continue;
+    printed.push_back(path);
+    std::cout << path << "  (" << f.type << ", default " << f.default_value
               << (f.range.empty() ? "" : ", valid " + f.range) << ")\n    " << f.doc << "\n";
+  }
 }
 
 void print_schema(const std::string& scene) {
@@ -171,11 +178,12 @@ void print_schema(const std::string& scene) {
         {"scene", {{"scene", "rra"}, {"geometry", {{"wall_thickness_normalised", 0.466}, {"end_cap_thickness_normalised", 0.25},
                                                    {"ring_count_normalised", 0.375}, {"ring_thickness_normalised", 0.4}}},
                    {"load", {{"max_pressure_kPa", fem::thesis::kRraTestPressure_kPa}}}}},
-        {"sweep", {{{"parameter", "geometry.wall_thickness_normalised"}, {"values", {0.4}}}}},
-        {"rule", {{"output", "extension_mm"}}}};
+        {"sweep", {{{"parameter", "geometry.wall_thickness_normalised"}, {"values", {0.4}}},
+                   {{"parameter", "geometry.ring_thickness_normalised"}, {"range", {{"from", 0.2}, {"to", 0.3}}}}}},
+        {"rule", {{"output", "extension_mm"}, {"limits", {{{"output", "mass_g"}, {"max", 100}}}}}},
+        {"thesis", {{"choice", 0.4}, {"order", {0.4}}}}};
     studies::read_study(probe);
-    print_fields("study config (softarm study) keys, with those of its base scene (here an rra scene); also "
-                 "\"scene\": a scene file name, and \"scene_changes\": a JSON merge patch applied to the scene");
+    print_fields("study config (softarm study) keys, with those of its base scene (here an rra scene)");
     std::cout << "outputs (rule, plot, limits, thesis.trend_of): rra: ";
     for (const auto& o : studies::scalar_outputs("rra", "fem")) std::cout << o << " ";
     std::cout << "\n  tca (model rod): ";

@@ -43,12 +43,12 @@ void require_output(const JsonReader& r, const std::string& key, const std::stri
 }
 
 std::vector<json> read_values(JsonReader& axis) {
+  const json& list = axis.raw("values", "list", "the swept values, all numbers or all names (or give 'range')");
   const bool has_values = axis.has("values"), has_range = axis.has("range");
   if (has_values == has_range)
     throw InputError(axis.field("values"), "give exactly one of 'values' (a list) or 'range' ({from, to, count})");
   std::vector<json> values;
   if (has_values) {
-    const json& list = axis.raw("values");
     if (!list.is_array() || list.empty())
       throw InputError(axis.field("values"), "needs a non-empty list of numbers or names, got " + list.dump());
     for (std::size_t i = 0; i < list.size(); ++i) {
@@ -74,8 +74,8 @@ std::vector<json> read_values(JsonReader& axis) {
 
 std::vector<SweepAxis> read_sweep(JsonReader& root) {
   const std::string field = root.field("sweep");
+  const json& list = root.raw("sweep", "list", "1 to 3 swept parameters: {parameter, values | range, label}", true);
   if (!root.has("sweep")) throw InputError(field, "required list of swept parameters is missing");
-  const json& list = root.raw("sweep");
   if (!list.is_array() || list.empty() || list.size() > 3)
     throw InputError(field, "needs a list of 1 to 3 parameters ({parameter, values | range, label}), got " +
                                 std::to_string(list.is_array() ? list.size() : 0));
@@ -105,8 +105,8 @@ DesignRuleSpec read_rule(JsonReader rule, const std::vector<std::string>& output
   r.then_minimise = rule.string("then_minimise", "", "among the kept points, take the one with the smallest value "
                                                      "of this output (e.g. mass_g); empty: the best point");
   if (!r.then_minimise.empty()) require_output(rule, "then_minimise", r.then_minimise, outputs);
+  const json& list = rule.raw("limits", "list", "eligibility limits on outputs: {output, min | max}");
   if (rule.has("limits")) {
-    const json& list = rule.raw("limits");
     if (!list.is_array()) throw InputError(rule.field("limits"), "needs a list of {output, min | max}");
     for (std::size_t i = 0; i < list.size(); ++i) {
       JsonReader limit(list[i], rule.field("limits") + "[" + std::to_string(i) + "]");
@@ -128,14 +128,14 @@ ThesisFinding read_thesis(JsonReader thesis, const std::string& rule_output, con
   ThesisFinding t;
   t.trend_of = thesis.string("trend_of", rule_output, "the output whose trend or order the thesis states");
   require_output(thesis, "trend_of", t.trend_of, outputs);
-  t.choice = thesis.has("choice") ? thesis.raw("choice") : json();
+  t.choice = thesis.raw("choice", "number or name", "the first-axis value the thesis chose");
   t.figure = thesis.string("figure", "", "where the thesis shows it (figure, table)");
   t.finding = thesis.string("finding", "", "what the thesis found, in its words");
   t.trend = thesis.choice("trend", "", {"", "increasing", "decreasing", "peak"},
                           "the trend of trend_of along the first axis in the thesis");
   t.peak_at = thesis.optional_number("peak_at", Range{}, "where the thesis' curve peaks (trend 'peak')");
+  const json& order = thesis.raw("order", "list", "first-axis values in the order of trend_of the thesis found");
   if (thesis.has("order")) {
-    const json& order = thesis.raw("order");
     if (!order.is_array()) throw InputError(thesis.field("order"), "needs a list of first-axis values");
     t.order.assign(order.begin(), order.end());
   }
@@ -156,23 +156,25 @@ StudySpec read_study(const json& document, const std::filesystem::path& base_dir
   s.title = root.string("title", s.name, "heading of the study's report");
   s.description = root.string("description", "", "free text shown in the report");
 
-  if (!root.has("scene") || !(root.raw("scene").is_object() || root.raw("scene").is_string()))
+  const json& scene = root.raw("scene", "object or string", "the base scene: a scene document as for softarm "
+                               "simulate, or the name of a scene file (relative to the study config)", true);
+  if (!(scene.is_object() || scene.is_string()))
     throw InputError(root.field("scene"), "required: a scene document as for softarm simulate, or the name of a "
                                           "scene file (relative to the study config)");
-  if (root.raw("scene").is_string()) {
-    const std::filesystem::path file = base_directory / root.raw("scene").get<std::string>();
+  if (scene.is_string()) {
+    const std::filesystem::path file = base_directory / scene.get<std::string>();
     if (!std::filesystem::exists(file))
       throw InputError(root.field("scene"), "scene file '" + file.string() + "' does not exist");
     s.scene = fem::load_json_file(file.string());
     s.scene.erase("output");  // a study writes its own output
     s.scene.erase("description");
   } else {
-    s.scene = root.raw("scene");
+    s.scene = scene;
     if (s.scene.contains("output"))
       throw InputError("scene.output", "a study writes its own output; remove 'output' from the scene");
   }
+  const json& changes = root.raw("scene_changes", "object", "a JSON merge patch applied to the base scene");
   if (root.has("scene_changes")) {
-    const json& changes = root.raw("scene_changes");
     if (!changes.is_object()) throw InputError(root.field("scene_changes"), "needs an object (a JSON merge patch)");
     s.scene.merge_patch(changes);
   }

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <initializer_list>
 #include <iterator>
 #include <sstream>
@@ -144,12 +145,42 @@ TEST_CASE("the schema of every config kind prints, with the keys each reader tak
       {"spl", {"load.chamber_pressures_kPa"}},
       {"design", {"requirements.max_mass_kg", "check.corrections", "check.improvement_rounds",
                   "check.improvement_tolerance_percent", "optimiser.categorical_keep"}},
-      {"study", {"sweep[0].parameter"}}};
+      {"study", {"sweep[].parameter", "sweep[].values", "sweep[].range.from", "rule.limits", "rule.limits[].max",
+                 "thesis.choice", "thesis.order", "scene", "scene_changes"}}};
   for (const auto& [kind, keys] : kinds) {
     const auto r = run_softarm("schema --scene " + kind);
     INFO(kind << ":\n" << r.output);
     REQUIRE(r.exit_code == 0);
     for (const auto& key : keys) CHECK(r.output.find("\n" + key + "  (") != std::string::npos);
+  }
+}
+
+TEST_CASE("the study schema lists every key the shipped study configs use", "[cli]") {
+  // Issue 36: keys read whole (sweep[].values, rule.limits, thesis.choice) were missing from it.
+  const auto schema = run_softarm("schema --scene study");
+  REQUIRE(schema.exit_code == 0);
+  std::vector<std::string> used;  // dotted paths, list items as "[]"; the scene's own keys are the scene schema's
+  const std::function<void(const nlohmann::json&, const std::string&)> collect = [&](const nlohmann::json& v,
+                                                                                     const std::string& path) {
+    if (v.is_array())
+      for (const auto& item : v) collect(item, path + "[]");
+    if (!v.is_object()) return;
+    for (const auto& [key, value] : v.items()) {
+      const std::string p = path.empty() ? key : path + "." + key;
+      used.push_back(p);
+      if (p != "scene" && p != "scene_changes") collect(value, p);
+    }
+  };
+  int configs = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(SOFTARM_SOURCE_DIR) + "/configs/studies")) {
+    std::ifstream in(entry.path());
+    collect(nlohmann::json::parse(in, nullptr, true, true), "");
+    ++configs;
+  }
+  CHECK(configs >= 10);
+  for (const auto& key : used) {
+    INFO(key);
+    CHECK(schema.output.find("\n" + key + "  (") != std::string::npos);
   }
 }
 

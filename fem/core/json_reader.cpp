@@ -90,6 +90,13 @@ const nlohmann::json& JsonReader::raw(const std::string& key) const {
   return object_.at(key);
 }
 
+const nlohmann::json& JsonReader::raw(const std::string& key, const std::string& type, const std::string& doc,
+                                      bool required) {
+  static const nlohmann::json absent;
+  declare(key, type, required ? "(required)" : "(optional)", "", doc);
+  return has(key) ? object_.at(key) : absent;
+}
+
 const nlohmann::json& JsonReader::at(const std::string& key, const std::string& type) const {
   if (!has(key)) throw InputError(field(key), "required " + type + " is missing");
   return object_.at(key);

@@ -55,6 +55,11 @@ class JsonReader {
   /// Sub-object reader (the key must hold an object); an absent key reads as {}.
   JsonReader object(const std::string& key, const std::string& doc);
   const nlohmann::json& raw(const std::string& key) const;
+  /// A value the caller checks itself (a list of numbers or names, an object of free keys),
+  /// declared with its type and doc so that `softarm schema` lists it; null when absent (the caller
+  /// says so when a `required` one is).
+  const nlohmann::json& raw(const std::string& key, const std::string& type, const std::string& doc,
+                            bool required = false);
   /// Exactly one of `keys` must be present (e.g. a physical or a normalised size).
   std::string exactly_one_of(const std::vector<std::string>& keys) const;
 
