@@ -60,6 +60,8 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_options.hpp"
+#include "fem/core/input_error.hpp"
 #include "fem/core/parallel.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
 #include "fem/forms/make_elastic_form.hpp"
@@ -70,6 +72,7 @@
 #include "fem/solver/load_stepper.hpp"
 
 using namespace softarm::fem;
+namespace bench = softarm::bench;
 
 namespace {
 
@@ -238,55 +241,33 @@ double median(std::vector<double> v) {
   return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-std::vector<double> parse_list(const char* s) {
-  std::vector<double> v;
-  std::stringstream in(s);
-  std::string item;
-  while (std::getline(in, item, ',')) v.push_back(std::stod(item));
-  return v;
-}
-
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   std::string scene = "both";
-  std::vector<double> levels{1, 2}, lengths{32};
+  std::vector<int> levels{1, 2};
+  std::vector<double> lengths{32};
   std::vector<std::string> elements{"27"};
   double pressure = 15, loose = 5e-3;
   int repeat = 3, threads = 1, increments = 4;
   std::vector<std::string> which{"strict", "loose", "ccx"};
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const auto next = [&] {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "%s needs a value\n", a.c_str());
-        std::exit(2);
-      }
-      return argv[++i];
-    };
-    if (a == "--scene") scene = next();
-    else if (a == "--levels") levels = parse_list(next());
-    else if (a == "--elements") {
-      elements.clear();
-      std::stringstream in(next());
-      for (std::string item; std::getline(in, item, ',');) elements.push_back(item);
-    }
-    else if (a == "--lengths") lengths = parse_list(next());
-    else if (a == "--pressure-kPa") pressure = std::stod(next());
-    else if (a == "--repeat") repeat = std::stoi(next());
-    else if (a == "--threads") threads = std::stoi(next());
-    else if (a == "--increments") increments = std::stoi(next());
-    else if (a == "--loose-tol") loose = std::stod(next());
-    else if (a == "--variants") {
-      which.clear();
-      std::stringstream in(next());
-      for (std::string item; std::getline(in, item, ',');) which.push_back(item);
-    }
-    else {
-      std::fprintf(stderr, "unknown option %s\n", a.c_str());
-      return 2;
-    }
-  }
+  CLI::App app{"softarm vs CalculiX (ccx) wall time on the same 3D actuator meshes"};
+  app.add_option("--scene", scene, "the short 3CA, the lone RRA or both")->check(CLI::IsMember({"tca", "rra", "both"}));
+  app.add_option("--levels", levels, "mesh levels")->delimiter(',')->check(CLI::Range(1, 4));
+  app.add_option("--lengths", lengths, "actuator lengths (mm)")->delimiter(',')->check(bench::Positive);
+  app.add_option("--elements", elements, "softarm's Hex27, Hex20 and/or Hex20 at 2x2x2 Gauss points (C3D20R's rule)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"27", "20", "20r"}));
+  app.add_option("--pressure-kPa", pressure, "the pressure")->check(bench::Positive);
+  app.add_option("--repeat", repeat, "runs per variant (the median is printed)")->check(CLI::Range(1, 1000));
+  app.add_option("--threads", threads, "softarm's threads and ccx's CCX_NPROC_* / OMP_NUM_THREADS")
+      ->check(CLI::Range(1, 256));
+  app.add_option("--increments", increments, "fixed load increments of both engines")->check(CLI::Range(1, 1000));
+  app.add_option("--loose-tol", loose, "softarm's residual tolerance in the loose variants")->check(bench::Positive);
+  app.add_option("--variants", which, "what is timed (ratio: time / the first variant's)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"strict", "loose", "ccx", "ccx-tight", "strict-refactor", "loose-refactor"}));
+  if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
   set_thread_count(threads);
   NewtonSettings strict, relaxed;
   strict.reuse_factor = relaxed.reuse_factor = true;  // the 3D scenes' default
@@ -301,8 +282,8 @@ int main(int argc, char** argv) {
   const std::vector<std::string> scenes = scene == "both" ? std::vector<std::string>{"rra", "tca"} : std::vector<std::string>{scene};
   for (const auto& s : scenes)
     for (double l : lengths)
-      for (double lv : levels) {
-        const Problem p{s, l, static_cast<int>(lv), pressure};
+      for (int lv : levels) {
+        const Problem p{s, l, lv, pressure};
         struct Variant {
           std::string name, kind;
           bool serendipity = false;
@@ -365,4 +346,7 @@ int main(int argc, char** argv) {
         std::fflush(stdout);
       }
   return 0;
+} catch (const InputError& e) {
+  std::fprintf(stderr, "%s\n", e.what());
+  return 2;
 }

@@ -10,14 +10,17 @@
 // the variables' physical units, materials by name.
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <string>
 
+#include "benchmarks/bench_options.hpp"
 #include "engine/design/design_config.hpp"
 #include "engine/design/design_problem.hpp"
+#include "fem/core/input_error.hpp"
 #include "fem/core/json_reader.hpp"
 #include "objectives/cell_rod_evaluation.hpp"
 
@@ -36,26 +39,41 @@ void row(const char* name, double search, double accurate) {
 }
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   std::string file = std::string(SOFTARM_SOURCE_DIR) + "/configs/thesis_requirements.json";
-  nlohmann::json design = nlohmann::json::object();
+  std::string design_text = "{}";
   int cell_levels = 16;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--design" && i + 1 < argc) design = nlohmann::json::parse(argv[++i]);
-    else if (a == "--cell-levels" && i + 1 < argc) cell_levels = std::stoi(argv[++i]);
-    else file = a;
-  }
+  CLI::App app{"one design by the search model and by the cell rod, and what the verification costs"};
+  app.add_option("requirements", file, "the design job's requirements config");
+  app.add_option("--design", design_text,
+                 "the design's values by variable name, in the variables' physical units, materials by name "
+                 "(the config's baseline for the rest)")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+            return j.is_object() ? std::string() : "not a JSON object: " + text;
+          },
+          "JSON"));
+  app.add_option("--cell-levels", cell_levels, "outputs along the cells' pressure ramp")->check(CLI::Range(1, 256));
+  if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
+  const nlohmann::json design = nlohmann::json::parse(design_text);
   const engine::DesignConfig config = engine::read_design_config(fem::load_json_file(file));
   std::vector<double> x = engine::baseline_values(config);
-  for (std::size_t i = 0; i < config.variables.size(); ++i) {
-    const auto& v = config.variables[i].variable;
-    if (!design.contains(v.name)) continue;
+  for (const auto& [name, value] : design.items()) {
+    const auto it = std::find_if(config.variables.begin(), config.variables.end(),
+                                 [&](const auto& d) { return d.variable.name == name; });
+    if (it == config.variables.end()) throw fem::InputError("--design", "'" + name + "' is not a variable of " + file);
+    const auto& v = it->variable;
+    const std::size_t i = static_cast<std::size_t>(it - config.variables.begin());
     if (v.kind == optimise::VariableKind::categorical) {
-      const auto it = std::find(v.choices.begin(), v.choices.end(), design[v.name].get<std::string>());
-      x[i] = static_cast<double>(it - v.choices.begin());
+      const auto choice = value.is_string() ? std::find(v.choices.begin(), v.choices.end(), value.get<std::string>())
+                                            : v.choices.end();
+      if (choice == v.choices.end()) throw fem::InputError("--design." + name, value.dump() + " is not one of its choices");
+      x[i] = static_cast<double>(choice - v.choices.begin());
     } else {
-      x[i] = design[v.name].get<double>();
+      if (!value.is_number() || !std::isfinite(value.get<double>()))
+        throw fem::InputError("--design." + name, value.dump() + " is not a number");
+      x[i] = value.get<double>();
     }
   }
   std::cout << "design: " << engine::describe(config, x) << "\n";
@@ -95,4 +113,7 @@ int main(int argc, char** argv) {
               cells.cell_seconds, cells.poses, cells.pose_seconds, peak_rss_mb());
   if (!cells.notes.empty()) std::cout << "notes:" << cells.notes << "\n";
   return 0;
+} catch (const fem::InputError& e) {
+  std::fprintf(stderr, "%s\n", e.what());
+  return 2;
 }

@@ -19,7 +19,6 @@
 //   next one's. --match: only the cases whose name holds one of these texts ("wall 0.90 cap 1.000"),
 //   e.g. to run level 3 where levels 1 and 2 differ. --held-only: run nothing, print the tables of
 //   the runs held (a case not held counts as "not run").
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -32,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_options.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/core/json_reader.hpp"
 #include "fem/core/parallel.hpp"
@@ -133,7 +133,7 @@ std::map<std::pair<int, std::string>, Outcome> read_results(const std::string& f
 }
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   CLI::App app{"the lone RRA over the corners and edges of the design bounds (issue 38)"};
   std::vector<int> levels{1, 2};
   std::vector<std::string> matches;
@@ -145,11 +145,7 @@ int main(int argc, char** argv) {
   app.add_option("--results", results_file, "results file: appended to as runs end, read to resume");
   app.add_option("--threads", threads, "runs side by side")->check(CLI::Range(1, 256));
   app.add_flag("--held-only", held_only, "run nothing: the tables of the runs the results file holds");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;  // --help: 0; a bad option: its message and 2, before any run
-  }
+  if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
   fem::set_thread_count(threads);
   std::sort(levels.begin(), levels.end());
   levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
@@ -214,4 +210,7 @@ int main(int argc, char** argv) {
     std::printf("largest change of a limit pressure found at both levels: %.2f %%\n", worst);
   }
   return 0;
+} catch (const fem::InputError& e) {  // configs/rra_thesis.json cannot be read (run from the repository root)
+  std::fprintf(stderr, "%s\n", e.what());
+  return 2;
 }

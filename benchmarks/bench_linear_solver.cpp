@@ -29,7 +29,9 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_options.hpp"
 #include "fem/assembly/energy_problem.hpp"
+#include "fem/core/input_error.hpp"
 #include "fem/core/parallel.hpp"
 #include "fem/forms/make_elastic_form.hpp"
 #include "fem/materials/material.hpp"
@@ -131,29 +133,44 @@ void run_config(const Config& c, const SparseMatrix& K, int repeat) {
               solver.cholmod_peak_bytes / 1048576.0, peak_rss_MiB(), residual);
   std::fflush(stdout);
 }
+
+/// "AxBxC": three numbers above 0 (integers when `integers`).
+CLI::Validator three_by(bool integers) {
+  return CLI::Validator(
+      [integers](std::string& text) {
+        const auto n = split(text, 'x');
+        bool ok = n.size() == 3;
+        for (const auto& v : n) {
+          int i = 0;
+          ok = ok && (integers ? CLI::detail::lexical_cast(v, i) && i >= 1 && i <= 1000 : bench::Positive(v).empty());
+        }
+        return ok ? std::string() : text + " is not " + (integers ? "NxNxN (elements, 1 to 1000 each)" : "AxBxC (mm above 0)");
+      },
+      integers ? "NxNxN" : "AxBxC");
+}
 }  // namespace
 
-int main(int argc, char** argv) {
-  std::string sizes = "4x4x40,6x6x60", box = "60x30x160", configs = "all";
+int main(int argc, char** argv) try {
+  std::vector<std::string> sizes{"4x4x40", "6x6x60"}, configs{"all"};
+  std::string box = "60x30x160";
   int repeat = 5, threads = 1;
-  bool assembly = true;
-  for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--sizes") && i + 1 < argc) sizes = argv[++i];
-    else if (!std::strcmp(argv[i], "--box") && i + 1 < argc) box = argv[++i];
-    else if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
-    else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--configs") && i + 1 < argc) configs = argv[++i];
-    else if (!std::strcmp(argv[i], "--no-assembly")) assembly = false;
-    else {
-      std::fprintf(stderr, "unknown argument %s\n", argv[i]);
-      return 2;
-    }
-  }
+  bool no_assembly = false;
+  std::vector<std::string> config_names{"all"};
+  for (const auto& c : all_configs()) config_names.push_back(c.name);
+  CLI::App app{"the sparse direct solve of 3D Hex27 tangents: CHOLMOD configurations and BLAS builds"};
+  app.add_option("--sizes", sizes, "box meshes, elements along x, y and z")->delimiter(',')->check(three_by(true));
+  app.add_option("--box", box, "the box's extent (mm)")->check(three_by(false));
+  app.add_option("--repeat", repeat, "factorisations per configuration (the median is printed)")->check(CLI::Range(1, 1000));
+  app.add_option("--threads", threads, "threads for assembly")->check(CLI::Range(1, 256));
+  app.add_option("--configs", configs, "solver configurations")->delimiter(',')->check(CLI::IsMember(config_names));
+  app.add_flag("--no-assembly", no_assembly, "skip timing the assembly");
+  if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
+  const bool assembly = !no_assembly;
   set_thread_count(threads);
   std::vector<Config> chosen;
-  const auto wanted = split(configs, ',');
+  const bool all = std::find(configs.begin(), configs.end(), "all") != configs.end();
   for (const auto& c : all_configs())
-    if (configs == "all" || std::find(wanted.begin(), wanted.end(), c.name) != wanted.end()) chosen.push_back(c);
+    if (all || std::find(configs.begin(), configs.end(), c.name) != configs.end()) chosen.push_back(c);
   const auto extent = split(box, 'x');
   const Eigen::Vector3d hi(std::stod(extent.at(0)), std::stod(extent.at(1)), std::stod(extent.at(2)));
   const char* blas = std::getenv("LD_LIBRARY_PATH");
@@ -161,7 +178,7 @@ int main(int argc, char** argv) {
               "%d thread(s) for assembly, median of %d; LD_LIBRARY_PATH=%s\n",
               box.c_str(), threads, repeat, blas ? blas : "(unset)");
 
-  for (const auto& size : split(sizes, ',')) {
+  for (const auto& size : sizes) {
     const auto n = split(size, 'x');
     const Mesh mesh = to_quadratic_3d(
         box_mesh(Eigen::Vector3d::Zero(), hi, std::stoi(n.at(0)), std::stoi(n.at(1)), std::stoi(n.at(2))));
@@ -203,4 +220,7 @@ int main(int argc, char** argv) {
     }
   }
   return 0;
+} catch (const InputError& e) {
+  std::fprintf(stderr, "%s\n", e.what());
+  return 2;
 }

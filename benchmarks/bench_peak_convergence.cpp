@@ -7,11 +7,11 @@
 //
 // Usage: bench_peak_convergence [config] [--max-level L] [--pressure-kPa P] [--radii r1,r2,...]
 #include <cstdio>
-#include <cstring>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_options.hpp"
+#include "fem/core/input_error.hpp"
 #include "fem/post/region_average.hpp"
 #include "fem/scenes/scene_config.hpp"
 
@@ -48,20 +48,19 @@ Peaks averaged(const fem::RraResult& r, int tube, double radius) {
 double change(double coarse, double fine) { return 100.0 * (coarse - fine) / fine; }
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   std::string config = "configs/rra_thesis.json";
   int max_level = 3;
   double pressure = -1;
   std::vector<double> radii = {0.25, 0.5, 1.0};
-  for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--max-level") && i + 1 < argc) max_level = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--pressure-kPa") && i + 1 < argc) pressure = std::atof(argv[++i]);
-    else if (!std::strcmp(argv[i], "--radii") && i + 1 < argc) {
-      radii.clear();
-      std::stringstream list(argv[++i]);
-      for (std::string item; std::getline(list, item, ',');) radii.push_back(std::stod(item));
-    } else config = argv[i];
-  }
+  CLI::App app{"do the burst and durability peaks of an rra scene converge under mesh refinement?"};
+  app.add_option("config", config, "an rra scene config");
+  app.add_option("--max-level", max_level, "mesh levels 1 to this")->check(CLI::Range(1, 8));
+  app.add_option("--pressure-kPa", pressure, "the final pressure")->check(bench::Positive)->default_str("the config's");
+  app.add_option("--radii", radii, "radii of the balls the peaks are averaged over (mm)")
+      ->delimiter(',')
+      ->check(bench::Positive);
+  if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
   auto spec = fem::load_scene_config(config).rra;
   if (pressure > 0) {
     spec.path.max_pressure_kPa = pressure;
@@ -101,4 +100,7 @@ int main(int argc, char** argv) {
   for (double p : reached) std::printf(" %.1f", p);
   std::printf("\n");
   return 0;
+} catch (const fem::InputError& e) {
+  std::fprintf(stderr, "%s\n", e.what());
+  return 2;
 }

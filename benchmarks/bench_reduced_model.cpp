@@ -15,9 +15,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <vector>
 
+#include "benchmarks/bench_options.hpp"
+#include "fem/core/input_error.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/reduced_scenes.hpp"
 #include "fem/reduced/spatial_rod.hpp"
@@ -37,14 +38,14 @@ double median(std::vector<double> v) {
 }
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   bool with_3d = false, out_of_plane = false;
   int repeat = 5;
-  for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--with-3d")) with_3d = true;
-    else if (!std::strcmp(argv[i], "--out-of-plane")) out_of_plane = true;
-    else if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
-  }
+  CLI::App app{"the reduced rod model against the FEM on the thesis designs (run from the repository root)"};
+  app.add_flag("--with-3d", with_3d, "also the thesis 3CA's bending by the 3D Hex27 FEM (minutes to tens of minutes)");
+  app.add_flag("--out-of-plane", out_of_plane, "also an out-of-plane bend of the 32 mm 3CA, spatial rod against 3D");
+  app.add_option("--repeat", repeat, "timed runs of each rod (the median is printed)")->check(CLI::Range(1, 1000));
+  if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
   const fem::Material ds30 = fem::builtin_material("dragon_skin_30", "bench"), abs = fem::builtin_material("digital_abs", "bench");
 
   // 1. Lone RRA: rod vs axisymmetric FEM (level 1).
@@ -209,4 +210,7 @@ int main(int argc, char** argv) {
                 std::atan2(uf.y(), uf.x()) * 180 / M_PI, std::atan2(ur.y(), ur.x()) * 180 / M_PI, uf.norm(), ur.norm());
   }
   return 0;
+} catch (const fem::InputError& e) {
+  std::fprintf(stderr, "%s\n", e.what());
+  return 2;
 }

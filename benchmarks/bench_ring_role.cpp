@@ -15,11 +15,14 @@
 #include <cstdio>
 #include <string>
 
+#include "benchmarks/bench_options.hpp"
+#include "fem/core/input_error.hpp"
 #include "fem/materials/material.hpp"
 #include "fem/reduced/arm_rod.hpp"
 #include "fem/scenes/tca_scene.hpp"
 
 using namespace softarm::fem;
+namespace bench = softarm::bench;
 
 namespace {
 constexpr double kG = 9.80665, kDeg = 180 / 3.14159265358979323846;
@@ -77,8 +80,11 @@ double rod(const Rings& r, const Load& l, bool confined) {
 }
 }  // namespace
 
-int main(int argc, char** argv) {
-  const bool rod_only = argc > 1 && std::string(argv[1]) == "--rod-only";
+int main(int argc, char** argv) try {
+  bool rod_only = false;
+  CLI::App app{"what the ABS rings do in the thesis 3CA, 3D against the planar rods (about 15 minutes on one core)"};
+  app.add_flag("--rod-only", rod_only, "the rods alone, no 3D runs");
+  if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
   const Load loads[] = {{"sag under its weight (deg)", 0, kG, 0, false},
                         {"stretch under 10x its weight (mm)", 0, 0, 10 * kG, true},
                         {"bending at 50 kPa (deg)", 50, 0, 0, false}};
@@ -94,4 +100,8 @@ int main(int argc, char** argv) {
                   seconds);
       std::fflush(stdout);
     }
+  return 0;
+} catch (const InputError& e) {
+  std::fprintf(stderr, "%s\n", e.what());
+  return 2;
 }

@@ -39,12 +39,13 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_options.hpp"
 #include "engine/design/design_config.hpp"
 #include "engine/design/design_problem.hpp"
+#include "fem/core/input_error.hpp"
 #include "fem/core/json_reader.hpp"
 #include "fem/reduced/arm_rod.hpp"
 #include "fem/scenes/rra_calibration.hpp"
@@ -135,16 +136,19 @@ fem::TcaSceneSpec reference_mesh_scene(const objectives::ArmCandidate& c, double
 }
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   bool with_3d = false, stiffness = false, cell_rod = false, reference = false;
   std::size_t only = 0;  // 1-based; 0: every design
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--with-3d") == 0) with_3d = true;
-    else if (std::strcmp(argv[i], "--design") == 0 && i + 1 < argc) only = std::stoul(argv[++i]);
-    else if (std::strcmp(argv[i], "--stiffness") == 0) stiffness = true;
-    else if (std::strcmp(argv[i], "--cell-rod") == 0) cell_rod = true;
-    else if (std::strcmp(argv[i], "--reference") == 0) reference = true;
-  }
+  CLI::App app{"the rod's bending error on optimised designs, and what mends it"};
+  app.add_flag("--with-3d", with_3d, "also the 3D FEM (minutes per design)");
+  app.add_option("--design", only, "only the N-th design (1-5); with --with-3d its 3D path at every output")
+      ->check(CLI::Range(1, 5))
+      ->default_str("every design");
+  app.add_flag("--stiffness", stiffness, "each distal segment's stretch under ten times its weight, 3D and both rods");
+  CLI::Option* cells = app.add_flag("--cell-rod", cell_rod, "bend each distal segment by the cell rod");
+  app.add_flag("--reference", reference, "with --cell-rod: also the fidelity ladder's reference mesh (~10 minutes per design)")
+      ->needs(cells);
+  if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
   const engine::DesignConfig config = engine::read_design_config(
       fem::load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/thesis_requirements.json"));
   std::vector<double> thesis_ds20 = engine::baseline_values(config);
@@ -265,4 +269,8 @@ int main(int argc, char** argv) {
     }
     std::printf("   max/min %.3f\n", hi / lo);
   }
+  return 0;
+} catch (const fem::InputError& e) {
+  std::fprintf(stderr, "%s\n", e.what());
+  return 2;
 }

@@ -12,10 +12,11 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstring>
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_options.hpp"
+#include "fem/core/input_error.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/core/parallel.hpp"
 
@@ -56,17 +57,18 @@ Row run_level(fem::RraSceneSpec spec, int level, int repeat) {
 }
 }  // namespace
 
-int main(int argc, char** argv) {
-  std::string config = "configs/rra_thesis.json";
+int main(int argc, char** argv) try {
+  std::string config = "configs/rra_thesis.json", which = "default";
   int max_level = 5, repeat = 5, threads = 1;
-  bool all_variants = false;
-  for (int i = 1; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--max-level") && i + 1 < argc) max_level = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc) repeat = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) threads = std::atoi(argv[++i]);
-    else if (!std::strcmp(argv[i], "--variants") && i + 1 < argc) all_variants = std::string(argv[++i]) == "all";
-    else config = argv[i];
-  }
+  CLI::App app{"an rra scene (the thesis RRA) at every mesh level"};
+  app.add_option("config", config, "an rra scene config");
+  app.add_option("--max-level", max_level, "mesh levels 1 to this")->check(CLI::Range(1, 8));
+  app.add_option("--repeat", repeat, "runs per level below 5 (the median is printed)")->check(CLI::Range(1, 1000));
+  app.add_option("--threads", threads, "threads")->check(CLI::Range(1, 256));
+  app.add_option("--variants", which, "all: also Q1/P0 and Q1 with pointwise volumetric integration")
+      ->check(CLI::IsMember({"default", "all"}));
+  if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
+  const bool all_variants = which == "all";
   fem::set_thread_count(threads);
   const auto scene = fem::load_scene_config(config);
   std::printf("thesis RRA benchmark: %s, %d thread(s), median of %d runs per level\n", config.c_str(), threads, repeat);
@@ -104,4 +106,7 @@ int main(int argc, char** argv) {
                     rows.back().extension);
   }
   return 0;
+} catch (const fem::InputError& e) {
+  std::fprintf(stderr, "%s\n", e.what());
+  return 2;
 }

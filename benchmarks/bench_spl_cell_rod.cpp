@@ -30,8 +30,11 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
-#include "fem/core/parallel.hpp"
+#include "benchmarks/bench_options.hpp"
 #include "benchmarks/bench_scene.hpp"
+#include "fem/core/input_error.hpp"
+#include "fem/core/json_reader.hpp"
+#include "fem/core/parallel.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
 #include "fem/scenes/tca_cell.hpp"
@@ -103,31 +106,38 @@ void read_tables(const nlohmann::json& j, fem::SpatialCellRodSpec& rod) {
 }
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   std::string config = "configs/spl_thesis_pose.json", compare, save_cells, load_cells;
   bool full = false, tables = false, rigid_caps = false, moments = false, cells_torsion = false;
-  int cell_levels = 16, axial_level = 0, end_rings = -1;
+  int cell_levels = 16, axial_level = 0, end_rings = -1, threads = fem::thread_count();
   std::vector<double> torsion_scales;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--compare" && i + 1 < argc) compare = argv[++i];
-    else if (a == "--full") full = true;
-    else if (a == "--tables") tables = true;
-    else if (a == "--rigid-caps") rigid_caps = true;
-    else if (a == "--moments") moments = true;
-    else if (a == "--cells-torsion") cells_torsion = true;
-    else if (a == "--axial-level" && i + 1 < argc) axial_level = std::atoi(argv[++i]);
-    else if (a == "--end-rings" && i + 1 < argc) end_rings = std::atoi(argv[++i]);
-    else if (a == "--save-cells" && i + 1 < argc) save_cells = argv[++i];
-    else if (a == "--load-cells" && i + 1 < argc) load_cells = argv[++i];
-    else if (a == "--torsion-scales" && i + 1 < argc) {
-      std::stringstream list(argv[++i]);
-      for (std::string item; std::getline(list, item, ',');) torsion_scales.push_back(std::atof(item.c_str()));
-    }
-    else if (a == "--cell-levels" && i + 1 < argc) cell_levels = std::atoi(argv[++i]);
-    else if (a == "--threads" && i + 1 < argc) fem::set_thread_count(std::atoi(argv[++i]));
-    else config = a;
-  }
+  CLI::App app{"the SPL pose on the spatial cell rod: its cells' cost and the tip's path"};
+  app.add_option("config", config, "an spl scene config");
+  app.add_option("--compare", compare, "a 3D run's summary.json (or the ladder's joints file) to set the joints against")
+      ->check(CLI::ExistingFile);
+  app.add_flag("--full", full, "full-model cells even where a segment's pressures allow a half model");
+  app.add_flag("--tables", tables, "print every cell's table at its outputs");
+  app.add_flag("--rigid-caps", rigid_caps, "pose without the end cells' tables");
+  app.add_flag("--moments", moments, "the moment and tension the rod puts on each cell at full pressure");
+  app.add_flag("--cells-torsion", cells_torsion, "pose with the cells' GJ over the bonded ends too");
+  app.add_option("--axial-level", axial_level, "the cells' layers as the 3D mesh's at level N")
+      ->check(CLI::Range(1, 8))
+      ->default_str("the cell-rod rung's");
+  app.add_option("--end-rings", end_rings, "ends through N rings (0: none)")
+      ->check(CLI::Range(0, 100))
+      ->default_str("the cell-rod rung's");
+  CLI::Option* save = app.add_option("--save-cells", save_cells, "keep the cells' tables in this JSON file");
+  app.add_option("--load-cells", load_cells, "pose from the cells' tables in this JSON file (no cells run)")
+      ->check(CLI::ExistingFile)
+      ->excludes(save);
+  app.add_option("--torsion-scales", torsion_scales, "pose again with each segment's GJ times each factor")
+      ->delimiter(',')
+      ->check(bench::Positive)
+      ->default_str("1");
+  app.add_option("--cell-levels", cell_levels, "outputs along the cells' pressure ramp")->check(CLI::Range(1, 256));
+  app.add_option("--threads", threads, "threads")->check(CLI::Range(1, 256));
+  if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
+  fem::set_thread_count(threads);
   const auto scene = bench::scene_of_kind(config, "spl", "bench_spl_cell_rod");
   if (!scene) return 2;
   fem::SplSceneSpec spec = scene->spl;
@@ -141,7 +151,7 @@ int main(int argc, char** argv) {
   } else {
     cells.rod.gravity_m_s2 = spec.gravity_m_s2;
     cells.rod.tip_mass_kg = spec.tip_mass_kg;
-    read_tables(nlohmann::json::parse(std::ifstream(load_cells)), cells.rod);
+    read_tables(fem::load_json_file(load_cells), cells.rod);
     // Tables saved before the cells had their torsion: the cells' GJ now.
     for (std::size_t p = 1; p < cells.rod.pieces.size(); p += 2)
       for (auto& c : cells.rod.pieces[p].cells)
@@ -210,7 +220,7 @@ int main(int argc, char** argv) {
     }
   }
   nlohmann::json reference;
-  if (!compare.empty()) reference = nlohmann::json::parse(std::ifstream(compare));
+  if (!compare.empty()) reference = fem::load_json_file(compare);
   if (torsion_scales.empty()) torsion_scales = {1.0};
   int rc = 0;
   for (double scale : torsion_scales) {
@@ -276,4 +286,7 @@ int main(int argc, char** argv) {
     }
   }
   return rc;
+} catch (const fem::InputError& e) {
+  std::fprintf(stderr, "%s\n", e.what());
+  return 2;
 }

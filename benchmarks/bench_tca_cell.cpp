@@ -22,42 +22,53 @@
 #include <string>
 #include <vector>
 
-#include "fem/core/parallel.hpp"
+#include "benchmarks/bench_options.hpp"
 #include "benchmarks/bench_scene.hpp"
+#include "fem/core/input_error.hpp"
+#include "fem/core/parallel.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/tca_cell.hpp"
 
 using namespace softarm;
 
-int main(int argc, char** argv) {
-  std::string config = "configs/tca_thesis.json", rings_arg, compare;
-  int axial_level = -1, end_rings = 0;
+int main(int argc, char** argv) try {
+  std::string config = "configs/tca_thesis.json", compare;
+  std::vector<int> rings;
+  int axial_level = -1, end_rings = 0, threads = fem::thread_count();
   bool torsion = false;
+  std::pair<double, double> moment{0, 0};
+  CLI::App app{"the ring-pitch cells of a 3CA config along its pressure ramp, and the cell rod's curve from them"};
+  app.add_option("config", config, "a tca scene config");
+  app.add_option("--rings", rings, "the cells' rings")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 1000))
+      ->default_str("the first, middle and last");
+  app.add_option("--axial-level", axial_level, "element layers along the axis as at this mesh level (0: the mesh level's)")
+      ->check(CLI::Range(0, 8))
+      ->default_str("the config's");
+  app.add_option("--compare", compare, "a `softarm simulate` curve.csv of the same 3CA")->check(CLI::ExistingFile);
+  app.add_option("--end-rings", end_rings, "also both ends through their first N rings (0: none)")->check(CLI::Range(0, 100));
+  app.add_flag("--torsion", torsion, "also each cell's GJ along the pressure ramp");
+  app.add_option("--moment-Nmm", moment, "a dead end moment Mx,My on every cell besides the pressures")
+      ->delimiter(',')
+      ->check(bench::Finite)
+      ->default_str("0,0");
+  app.add_option("--threads", threads, "threads")->check(CLI::Range(1, 256));
+  if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
+  fem::set_thread_count(threads);
   fem::CellEndLoad end_load;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--rings" && i + 1 < argc) rings_arg = argv[++i];
-    else if (a == "--axial-level" && i + 1 < argc) axial_level = std::atoi(argv[++i]);
-    else if (a == "--compare" && i + 1 < argc) compare = argv[++i];
-    else if (a == "--end-rings" && i + 1 < argc) end_rings = std::atoi(argv[++i]);
-    else if (a == "--torsion") torsion = true;
-    else if (a == "--moment-Nmm" && i + 1 < argc) {
-      double mx = 0, my = 0;
-      std::sscanf(argv[++i], "%lf,%lf", &mx, &my);
-      end_load.moment_Nmm = Eigen::Vector2d(mx, my);
-    }
-    else if (a == "--threads" && i + 1 < argc) fem::set_thread_count(std::atoi(argv[++i]));
-    else config = a;
-  }
+  end_load.moment_Nmm = Eigen::Vector2d(moment.first, moment.second);
   const auto scene = bench::scene_of_kind(config, "tca", "bench_tca_cell");
   if (!scene) return 2;
   fem::TcaSceneSpec spec = scene->tca;
   if (axial_level >= 0) spec.axial_level = axial_level;
   const int n = spec.design.actuator.ring_count;
-  std::vector<int> rings;
-  if (rings_arg.empty()) rings = {1, (n + 1) / 2, n};
-  std::stringstream list(rings_arg);
-  for (std::string item; std::getline(list, item, ',');) rings.push_back(std::atoi(item.c_str()));
+  if (rings.empty()) rings = {1, (n + 1) / 2, n};
+  for (int ring : rings)
+    if (ring > n) {
+      std::fprintf(stderr, "bench_tca_cell: --rings: %s has %d rings, not %d\n", config.c_str(), n, ring);
+      return 2;
+    }
   std::printf("%s: %d rings, pitch %.4f mm, threads %d\n", config.c_str(), n, spec.design.actuator.pitch(),
               fem::thread_count());
   if (torsion)
@@ -167,4 +178,7 @@ int main(int argc, char** argv) {
       std::printf("\n");
   }
   return 0;
+} catch (const fem::InputError& e) {
+  std::fprintf(stderr, "%s\n", e.what());
+  return 2;
 }

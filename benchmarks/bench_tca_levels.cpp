@@ -17,12 +17,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
 
+#include "benchmarks/bench_options.hpp"
+#include "fem/core/input_error.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/core/parallel.hpp"
 #include "fem/mesh/tca_mesher.hpp"
@@ -104,16 +106,27 @@ void print_layer_extrapolations(std::vector<RunResult> runs) {
 }
 }  // namespace
 
-int main(int argc, char** argv) {
-  std::string config = "configs/tca_thesis.json", runs = "2:1";
-  int repeat = 1;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--runs" && i + 1 < argc) runs = argv[++i];
-    else if (a == "--repeat" && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
-    else if (a == "--threads" && i + 1 < argc) fem::set_thread_count(std::atoi(argv[++i]));
-    else config = a;
-  }
+int main(int argc, char** argv) try {
+  std::string config = "configs/tca_thesis.json";
+  std::vector<std::string> runs{"2:1"};
+  int repeat = 1, threads = fem::thread_count();
+  CLI::App app{"a tca scene (the thesis 3CA bending) at chosen mesh levels and element orders, each run in its own process"};
+  app.add_option("config", config, "a tca scene config");
+  app.add_option("--runs", runs,
+                 "element:level[/axial level]; element 1 = Hex8, 2 = Hex27, 20 = Hex20, 20r = Hex20 at 2x2x2 points; "
+                 "the axial level (mesh.axial_level) refines along the axis alone")
+      ->delimiter(',')
+      ->check(CLI::Validator(
+          [](std::string& run) {
+            static const std::regex form("(1|2|20|20r):[1-8](/[1-8])?");
+            return std::regex_match(run, form) ? std::string() : "run '" + run + "' is not element:level[/axial level] "
+                                                                 "(element 1, 2, 20 or 20r; levels 1 to 8)";
+          },
+          "RUN"));
+  app.add_option("--repeat", repeat, "runs of each (the median time is printed)")->check(CLI::Range(1, 1000));
+  app.add_option("--threads", threads, "threads")->check(CLI::Range(1, 256));
+  if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
+  fem::set_thread_count(threads);
   const auto scene = fem::load_scene_config(config);
   if (scene.scene != "tca") {
     std::fprintf(stderr, "bench_tca_levels: %s is not a tca scene\n", config.c_str());
@@ -123,10 +136,8 @@ int main(int argc, char** argv) {
   std::printf("%6s %5s %5s %-5s %8s %5s %6s %6s %9s %9s %9s %8s %10s %9s %9s %8s %8s  %s\n", "elem", "level", "axial", "model",
               "dofs", "steps", "newton", "factor", "assemb_s", "factor_s", "total_s", "peak_MiB", "p_target",
               "angle_deg", "at_kPa", "tip_x", "tip_z", "outcome");
-  std::stringstream list(runs);
-  std::string item;
   std::vector<RunResult> results;
-  while (std::getline(list, item, ',')) {
+  for (const std::string& item : runs) {
     const int element = std::atoi(item.c_str()), level = std::atoi(item.c_str() + item.find(':') + 1);
     const bool reduced = item.find('r') != std::string::npos && item.find('r') < item.find(':');
     const auto slash = item.find('/');
@@ -156,4 +167,7 @@ int main(int argc, char** argv) {
   }
   print_layer_extrapolations(results);
   return 0;
+} catch (const fem::InputError& e) {
+  std::fprintf(stderr, "%s\n", e.what());
+  return 2;
 }

@@ -12,7 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/bench_options.hpp"
 #include "benchmarks/bench_scene.hpp"
+#include "fem/core/input_error.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
 #include "fem/scenes/tca_cell_rod.hpp"
@@ -26,18 +28,25 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 }  // namespace
 
-int main(int argc, char** argv) {
-  std::string config = "configs/tca_thesis.json", rings_arg = "1,2,3";
+int main(int argc, char** argv) try {
+  std::string config = "configs/tca_thesis.json";
+  std::vector<int> end_rings_asked{1, 2, 3};
   int segment = 0, axial_level = 0;
-  bool whole = true;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--segment" && i + 1 < argc) segment = std::atoi(argv[++i]);
-    else if (a == "--end-rings" && i + 1 < argc) rings_arg = argv[++i];
-    else if (a == "--axial-level" && i + 1 < argc) axial_level = std::atoi(argv[++i]);
-    else if (a == "--no-3d") whole = false;
-    else config = a;
-  }
+  bool no_3d = false;
+  CLI::App app{"a 3CA's torsion at rest, bonded at both ends: the whole 3D model against the spatial cell rod"};
+  app.add_option("config", config, "a tca config, or an spl config with --segment");
+  app.add_option("--segment", segment, "an spl config's segment N as its cell rod sees it")
+      ->check(CLI::Range(1, 3))
+      ->default_str("none (a tca config)");
+  app.add_option("--end-rings", end_rings_asked, "the rod also with bonded end cells through each of these ring counts")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 100));
+  app.add_option("--axial-level", axial_level, "element layers along the axis as at mesh level N")
+      ->check(CLI::Range(1, 8))
+      ->default_str("the config's");
+  app.add_flag("--no-3d", no_3d, "skip the whole 3D model");
+  if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
+  const bool whole = !no_3d;
   const fem::SceneConfig scene = fem::load_scene_config(config);
   fem::TcaSceneSpec spec;
   if (scene.scene == "spl") {
@@ -58,9 +67,7 @@ int main(int argc, char** argv) {
               segment ? (" segment " + std::to_string(segment)).c_str() : "", n, spec.design.actuator.length_mm,
               spec.design.actuator.end_cap_thickness_mm, spec.design.actuator.pitch());
   std::vector<int> end_rings = {0};
-  std::stringstream list(rings_arg);
-  for (std::string item; std::getline(list, item, ',');) {
-    const int rings = std::atoi(item.c_str());
+  for (const int rings : end_rings_asked) {
     if (fem::end_cell_rings(rings, n) > 0) end_rings.push_back(rings);
     else std::printf("ends through %d rings: %s\n", rings, fem::no_end_cells_note(rings, n).c_str());
   }
@@ -82,4 +89,7 @@ int main(int argc, char** argv) {
     std::printf("\n");
   }
   return 0;
+} catch (const fem::InputError& e) {
+  std::fprintf(stderr, "%s\n", e.what());
+  return 2;
 }
