@@ -2,10 +2,10 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
-#include <regex>
 
 #include "engine/design/design_command.hpp"
 #include "fem/core/number_text.hpp"
@@ -133,12 +133,23 @@ int export_deck(const std::string& file, const std::string& deck_path, double pr
   return 0;
 }
 
+/// "sweep[1].range.from" -> "sweep[].range.from": a list's items share their keys.
+std::string without_item_indices(const std::string& path) {
+  std::string out;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    out += path[i];
+    if (path[i] != '[') continue;
+    while (i + 1 < path.size() && std::isdigit(static_cast<unsigned char>(path[i + 1]))) ++i;
+  }
+  return out;
+}
+
 void print_fields(const std::string& title) {
   std::cout << title << ":\n";
   std::vector<std::string> printed;
   for (const auto& f : fem::JsonReader::documented_fields()) {
     // A list's items print once, as "sweep[].values", whichever item declared them.
-    const std::string path = std::regex_replace(f.path, std::regex(R"(\[[0-9]+\])"), "[]");
+    const std::string path = without_item_indices(f.path);
     if (std::find(printed.begin(), printed.end(), path) != printed.end()) continue;
     printed.push_back(path);
     std::cout << path << "  (" << f.type << ", default " << f.default_value
