@@ -74,7 +74,8 @@ std::vector<json> read_values(JsonReader& axis) {
 
 std::vector<SweepAxis> read_sweep(JsonReader& root) {
   const std::string field = root.field("sweep");
-  const json& list = root.raw("sweep", "list", "1 to 3 swept parameters: {parameter, values | range, label}", true);
+  const json& list = root.raw("sweep", "list", "1 to 3 swept parameters: {parameter, values | range, label}",
+                               "(required)");
   if (!root.has("sweep")) throw InputError(field, "required list of swept parameters is missing");
   if (!list.is_array() || list.empty() || list.size() > 3)
     throw InputError(field, "needs a list of 1 to 3 parameters ({parameter, values | range, label}), got " +
@@ -157,7 +158,7 @@ StudySpec read_study(const json& document, const std::filesystem::path& base_dir
   s.description = root.string("description", "", "free text shown in the report");
 
   const json& scene = root.raw("scene", "object or string", "the base scene: a scene document as for softarm "
-                               "simulate, or the name of a scene file (relative to the study config)", true);
+                               "simulate, or the name of a scene file (relative to the study config)", "(required)");
   if (!(scene.is_object() || scene.is_string()))
     throw InputError(root.field("scene"), "required: a scene document as for softarm simulate, or the name of a "
                                           "scene file (relative to the study config)");

@@ -140,9 +140,9 @@ TEST_CASE("the schema marks the lists a config must give as required, as the rea
 TEST_CASE("the schema of every config kind prints, with the keys each reader takes", "[cli]") {
   // `schema --scene design` once exited 2: its probe document lacked a complete start design.
   const std::vector<std::pair<std::string, std::vector<std::string>>> kinds = {
-      {"rra", {"geometry.wall_thickness_normalised", "load.max_pressure_kPa"}},
-      {"tca", {"load.chamber_pressures_kPa"}},
-      {"spl", {"load.chamber_pressures_kPa"}},
+      {"rra", {"geometry.wall_thickness_normalised", "load.max_pressure_kPa", "materials.tube", "materials.rings"}},
+      {"tca", {"load.chamber_pressures_kPa", "materials.sheath"}},
+      {"spl", {"load.chamber_pressures_kPa", "materials.connector"}},
       {"design", {"requirements.max_mass_kg", "check.corrections", "check.improvement_rounds",
                   "check.improvement_tolerance_percent", "optimiser.categorical_keep"}},
       {"study", {"sweep[].parameter", "sweep[].values", "sweep[].range.from", "rule.limits", "rule.limits[].max",

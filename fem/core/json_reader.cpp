@@ -91,10 +91,10 @@ const nlohmann::json& JsonReader::raw(const std::string& key) const {
 }
 
 const nlohmann::json& JsonReader::raw(const std::string& key, const std::string& type, const std::string& doc,
-                                      bool required) {
-  static const nlohmann::json absent;
-  declare(key, type, required ? "(required)" : "(optional)", "", doc);
-  return has(key) ? object_.at(key) : absent;
+                                      const std::string& absent) {
+  static const nlohmann::json null;
+  declare(key, type, absent, "", doc);
+  return has(key) ? object_.at(key) : null;
 }
 
 const nlohmann::json& JsonReader::at(const std::string& key, const std::string& type) const {

@@ -56,10 +56,10 @@ class JsonReader {
   JsonReader object(const std::string& key, const std::string& doc);
   const nlohmann::json& raw(const std::string& key) const;
   /// A value the caller checks itself (a list of numbers or names, an object of free keys),
-  /// declared with its type and doc so that `softarm schema` lists it; null when absent (the caller
-  /// says so when a `required` one is).
+  /// declared with its type, doc and what stands for it when absent (`absent`: "(optional)",
+  /// "(required)", or the default the caller takes) so that `softarm schema` lists it; null when absent.
   const nlohmann::json& raw(const std::string& key, const std::string& type, const std::string& doc,
-                            bool required = false);
+                            const std::string& absent = "(optional)");
   /// Exactly one of `keys` must be present (e.g. a physical or a normalised size).
   std::string exactly_one_of(const std::vector<std::string>& keys) const;
 

@@ -103,8 +103,16 @@ fem::PressurePathSpec read_load(JsonReader load, JsonReader solver) {
 
 /// A material by part: a built-in name or a material object.
 fem::Material read_material(JsonReader& materials, const std::string& key, const char* default_name) {
-  return fem::material_from_json(materials.has(key) ? materials.raw(key) : nlohmann::json(default_name),
-                                 materials.field(key));
+  static const std::string names = [] {
+    std::string s;
+    for (const auto& n : fem::builtin_material_names()) s += (s.empty() ? "" : ", ") + n;
+    return s;
+  }();
+  const nlohmann::json& given = materials.raw(key, "name or object",
+                                              "the " + key + " material: a built-in name (" + names +
+                                                  ") or a material object (docs/materials.md)",
+                                              std::string("\"") + default_name + "\"");
+  return fem::material_from_json(given.is_null() ? nlohmann::json(default_name) : given, materials.field(key));
 }
 
 /// Mesh level and element order; `max_level` bounds what this machine can hold.
