@@ -278,6 +278,212 @@ void name_the_stop(const StopContext& c, const Vector& x, PressurePathResult& ou
                     mode_note + volume_note;
   }
 }
+/// The solver's running totals into the result: taken after pressure control and again after
+/// volume control, which uses the same solver.
+void take_solver_costs(const LinearSolver& solver, PressurePathResult& out) {
+  out.analyse_s = solver.analyse_seconds;
+  out.factorize_s = solver.factorize_seconds;
+  out.solve_s = solver.solve_seconds;
+  out.factorizations = solver.factorizations;
+  out.lu_fallbacks = solver.lu_fallbacks;
+  out.shifted_factorizations = solver.shifted_factorizations;
+  out.reused_solves = solver.reused_solves;
+  out.cg_iterations = solver.cg_iterations;
+  out.factor_flops = solver.factor_flops;
+  out.factor_nonzeros = solver.factor_nonzeros;
+}
+
+/// What every step of the path shares: the problem, its loaded volume, the solver and the load.
+struct PathContext {
+  const EnergyProblem& problem;
+  const PressurePathSpec& spec;
+  const LoadedVolume& chamber;
+  LinearSolver& solver;
+  LoadState& load;
+  const std::function<void(double)>& set_pressures;  // every loaded chamber at level · fraction · p_max
+  const std::function<void(const PressureState&, const Vector&)>& on_state;
+};
+
+/// An earlier run's states, handed on as they came; returns where the path goes on from the last
+/// of them (x, the loads and the solver's factor set there).
+PathStart resume_from(const PathContext& c, const std::vector<PathLogRecord>& resumed, Vector& x,
+                      PressurePathResult& out) {
+  for (const PathLogRecord& r : resumed) {
+    out.history.push_back(r.state);
+    if (c.on_state) c.on_state(r.state, r.x);
+  }
+  const PathLogRecord& last = resumed.back();
+  x = last.x;
+  c.load.gravity_scale = c.spec.gravity_preload ? 1.0 : 0.0;
+  c.set_pressures(last.level);
+  c.load.dirichlet_scale = last.level;
+  PathStart start;
+  start.level = last.level;
+  start.increment = last.next_increment;
+  // The first record is the state at rest, whose statistics are the gravity preload's.
+  if (resumed.size() >= 2) start.stats = last.stats;
+  for (std::size_t i = resumed.size() >= 3 ? resumed.size() - 3 : 0; i + 1 < resumed.size(); ++i)
+    start.earlier.emplace_back(resumed[i].level, resumed[i].x);
+  start.resumed = true;
+  out.path.stats = resumed.front().stats;
+  // The uninterrupted run holds a factor of the tangent there, which Newton's next step reuses
+  // (NewtonSettings::reuse_factor): so does the resumed one (at rest, exactly the same one),
+  // unless the earlier run had reached the end (a replay: no step left).
+  const bool finished = !c.spec.output_pressures_kPa.empty() &&
+                        c.spec.output_pressures_kPa.back() / c.spec.max_pressure_kPa - last.level <= 1e-12;
+  if (!finished) c.solver.factorize(c.problem.evaluate(x, true, true).hessian);
+  return start;
+}
+
+/// Self-weight first, in its own path (it may bend a soft body noticeably); false, with the
+/// result's outcome and diagnosis set, where the body does not carry it.
+bool preload_gravity(const PathContext& c, Vector& x, PressurePathResult& out) {
+  PathCallbacks gravity;
+  gravity.apply_load = [&](double level) { c.load.gravity_scale = level; };
+  gravity.on_converged = [](double, const Vector&, bool, const NewtonReport&) {};
+  // Self-weight barely deforms a soft actuator (3CA: 3° of sag): try it in one step
+  // (the step controller still cuts back if Newton struggles). Ramping it like the
+  // pressure cost 5 steps and ~17 factorisations on the thesis 3CA.
+  StepSettings one_step = c.spec.steps;
+  one_step.initial_increment = one_step.max_increment = 1.0;
+  const PathResult preload = follow_load_path(c.problem, x, c.solver, {1.0}, gravity, c.spec.newton, one_step);
+  out.path.stats = preload.stats;
+  if (preload.completed) return true;
+  out.path = preload;
+  out.outcome = PathOutcome::stalled;
+  out.diagnosis = "the body does not carry its own weight: the gravity preload stopped at " +
+                  fmt(100 * preload.reached_level, 3) + " % (" + to_string(preload.failure) + ": " + preload.message +
+                  "). Check the supports and the materials.";
+  return false;
+}
+
+/// The unloaded state, the reference of "flattening": its dp/dV is the first history entry.
+void record_rest_state(const PathContext& c, const Vector& x, std::optional<PathLog>& log, PressurePathResult& out) {
+  const Evaluation e0 = c.problem.evaluate(x, true, true);
+  c.solver.factorize(e0.hessian);
+  const PressureState s0{0.0, c.chamber.volume(x), pv_stiffness(c.problem, c.chamber, c.solver, x, c.spec.newton, nullptr),
+                         c.solver.status() == LinearSolver::Status::positive_definite, 0, true};
+  out.history.push_back(s0);
+  if (c.on_state) c.on_state(s0, x);
+  if (log) log->append({0.0, c.spec.steps.initial_increment, s0, out.path.stats, x});
+}
+
+/// Pressure control from `start` through the output levels: every converged state into the
+/// history (and the log), the preload's statistics added to the path's.
+void follow_pressure(const PathContext& c, Vector& x, const PathStart& start, std::optional<PathLog>& log,
+                     PressurePathResult& out) {
+  std::vector<double> levels;
+  for (double p : c.spec.output_pressures_kPa) levels.push_back(p / c.spec.max_pressure_kPa);
+  PathCallbacks callbacks;
+  std::pair<double, const Vector*> converged{0.0, nullptr};  // the state on_converged was last given
+  callbacks.apply_load = [&](double level) {
+    c.set_pressures(level);
+    c.load.dirichlet_scale = level;
+  };
+  callbacks.on_converged = [&](double level, const Vector& xs, bool is_output, const NewtonReport& report) {
+    PressureState s{level * c.spec.max_pressure_kPa, c.chamber.volume(xs),
+                    pv_stiffness(c.problem, c.chamber, c.solver, xs, c.spec.newton, &report.last.hessian),
+                    report.tangent_positive_definite, report.iterations, is_output};
+    out.history.push_back(s);
+    if (c.on_state) c.on_state(s, xs);
+    converged = {level, &xs};
+  };
+  if (log)
+    callbacks.on_increment = [&](double next_increment, const PathStatistics& stats) {
+      log->append({converged.first, next_increment, out.history.back(), stats, *converged.second});
+    };
+  const PathStatistics preload_stats = out.path.stats;
+  out.path = follow_load_path(c.problem, x, c.solver, levels, callbacks, c.spec.newton, c.spec.steps, start);
+  out.path.stats.steps += preload_stats.steps;
+  out.path.stats.newton_iterations += preload_stats.newton_iterations;
+  out.path.stats.cutbacks += preload_stats.cutbacks;
+  out.path.stats.second_starts += preload_stats.second_starts;
+  take_solver_costs(c.solver, out);
+  out.reached_pressure_kPa = out.history.back().pressure_kPa;
+}
+
+/// Past a stall of pressure control by prescribing the chamber volume instead: true where that
+/// settles the answer (a traced limit point, or the requested pressure reached); false where the
+/// stop is still to be named, with what volume control saw in the diagnosis and x, the loads and
+/// reached pressure at the state to name it by.
+bool settled_by_volume_control(const PathContext& c, Vector& x, const Vector& x_stall, double ratio,
+                               PressurePathResult& out) {
+  const PressurePathSpec& spec = c.spec;
+  const PressureState last = out.history.back();
+  const PressureState& prev = out.history[out.history.size() - 2];
+  double level = last.pressure_kPa / spec.max_pressure_kPa;
+  const double step = std::max(last.chamber_volume_mm3 - prev.chamber_volume_mm3, 1e-4 * last.chamber_volume_mm3);
+  VolumeControlProblem vp;
+  vp.apply_level = c.set_pressures;
+  vp.volume = [&](const Vector& xs) { return c.chamber.volume(xs); };
+  vp.volume_gradient = [&](const Vector& xs) { return c.chamber.gradient(xs); };
+  vp.pressure_per_level_MPa = spec.max_pressure_kPa * kMPaPerKPa;
+  const VolumeControlState before{prev.pressure_kPa / spec.max_pressure_kPa, prev.chamber_volume_mm3, 0,
+                                  prev.tangent_positive_definite};
+  VolumeControlSettings vc_settings;
+  vc_settings.verbose = spec.steps.verbose;
+  vc_settings.augmented_cg = spec.limit.volume_control_by_cg;
+  const VolumeControlResult vc = follow_volume(c.problem, x, level, c.solver, vp, step, &before, vc_settings);
+  for (std::size_t i = 1; i < vc.states.size(); ++i)
+    out.beyond_limit.push_back({vc.states[i].level * spec.max_pressure_kPa, vc.states[i].volume,
+                                std::isnan(vc.states[i].level_slope_per_mm3)
+                                    ? 0.0
+                                    : vc.states[i].level_slope_per_mm3 * spec.max_pressure_kPa,
+                                vc.states[i].tangent_positive_definite, vc.states[i].iterations, false});
+  out.path.stats.newton_iterations += vc.newton_iterations;
+  take_solver_costs(c.solver, out);
+  // x is now the traced state of the largest pressure (at least the last one's): report that one.
+  out.reached_pressure_kPa = level * spec.max_pressure_kPa;
+  if (vc.passed_peak) {
+    out.outcome = PathOutcome::limit_point;
+    out.limit_kind = LimitKind::traced;
+    out.estimated_limit_pressure_kPa = vc.peak_level * spec.max_pressure_kPa;
+    out.diagnosis = "limit point (ballooning) at " + fmt(out.estimated_limit_pressure_kPa) +
+                    " kPa: chamber-volume control followed the path past the pressure maximum (" + vc.message +
+                    ", the loaded volume growing from " + fmt(last.chamber_volume_mm3) + " to " +
+                    fmt(vc.states.back().volume) + " mm³). Pressure control cannot pass it; this is the burst "
+                    "mode of this design. The returned state is the one at the largest pressure.";
+    return true;
+  }
+  if (level < 1.0) {
+    // No maximum: keep the pressure-controlled diagnosis, with what volume control saw.
+    out.diagnosis = " Volume control from there: " + vc.message + ".";
+    return false;
+  }
+  Vector x_end = x;
+  c.set_pressures(1.0);
+  const NewtonReport landing = solve_newton(c.problem, x_end, c.solver, spec.newton);
+  if (!landing.converged) {
+    // Volume control climbed past the requested pressure but Newton cannot land on it (a solver
+    // limited to a few iterations): no state at the requested pressure, so no answer; the stall
+    // of pressure control is reported at its last state.
+    x = x_stall;
+    c.set_pressures(last.pressure_kPa / spec.max_pressure_kPa);
+    out.reached_pressure_kPa = last.pressure_kPa;
+    out.beyond_limit.clear();  // its states overshoot the requested pressure: not part of the answer
+    out.diagnosis = " Volume control from there climbed past the requested pressure without a maximum (" +
+                    vc.message + "), where Newton could not land on it (" + landing.message + ").";
+    return false;
+  }
+  // No maximum, and the path climbed to the requested pressure: the stall was numerical (a thin
+  // cap that balloons and tightens again, a Newton step pressure control could not take). Volume
+  // control stops at the first state at or above it; Newton at exactly the requested pressure
+  // from there lands on it (the branch is stable again).
+  x = x_end;
+  const PressureState s{spec.max_pressure_kPa, c.chamber.volume(x),
+                        pv_stiffness(c.problem, c.chamber, c.solver, x, spec.newton, nullptr),
+                        landing.tangent_positive_definite, landing.iterations, true};
+  take_solver_costs(c.solver, out);
+  out.outcome = PathOutcome::completed;
+  out.reached_pressure_kPa = s.pressure_kPa;
+  out.diagnosis = "reached " + fmt(s.pressure_kPa) + " kPa: pressure control stopped at " + fmt(last.pressure_kPa) +
+                  " kPa (" + to_string(out.path.failure) + ", dp/dV " + fmt(100 * ratio, 3) +
+                  " % of its initial value) and chamber-volume control carried the path on to the requested "
+                  "pressure without a maximum (" + vc.message + ")";
+  out.history.push_back(s);
+  if (c.on_state) c.on_state(s, x);
+  return true;
+}
 }  // namespace
 
 PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::vector<const ChamberPressureForm*>& chambers,
@@ -296,6 +502,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
       load.chamber_pressure_MPa[c] = level * chamber.fractions[i] * spec.max_pressure_kPa * kMPaPerKPa;
     }
   };
+  const PathContext c{problem, spec, chamber, solver, load, set_pressures, on_state};
 
   std::optional<PathLog> log;
   if (!spec.checkpoint.file.empty()) {
@@ -307,205 +514,36 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
   out.resumed_states = static_cast<int>(resumed.size());
   const bool from_rest = resumed.empty();
 
-  // The unloaded state: its stiffness is the reference for "flattening".
+  // 1. The unloaded state (after self-weight), or where an earlier run stopped.
   set_pressures(0.0);
   load.dirichlet_scale = 0.0;
   load.gravity_scale = 0.0;
   problem.apply_constraints(x, 0.0);
   PathStart start;
-  if (!resumed.empty()) {
-    // An earlier run's states, handed on as they came; its last one is where the path goes on.
-    for (const PathLogRecord& r : resumed) {
-      out.history.push_back(r.state);
-      if (on_state) on_state(r.state, r.x);
-    }
-    const PathLogRecord& last = resumed.back();
-    x = last.x;
-    load.gravity_scale = spec.gravity_preload ? 1.0 : 0.0;
-    set_pressures(last.level);
-    load.dirichlet_scale = last.level;
-    start.level = last.level;
-    start.increment = last.next_increment;
-    // The first record is the state at rest, whose statistics are the gravity preload's.
-    if (resumed.size() >= 2) start.stats = last.stats;
-    for (std::size_t i = resumed.size() >= 3 ? resumed.size() - 3 : 0; i + 1 < resumed.size(); ++i)
-      start.earlier.emplace_back(resumed[i].level, resumed[i].x);
-    start.resumed = true;
-    out.path.stats = resumed.front().stats;
-    // The uninterrupted run holds a factor of the tangent there, which Newton's next step reuses
-    // (NewtonSettings::reuse_factor): so does the resumed one (at rest, exactly the same one),
-    // unless the earlier run had reached the end (a replay: no step left).
-    const bool finished = !spec.output_pressures_kPa.empty() &&
-                          spec.output_pressures_kPa.back() / spec.max_pressure_kPa - last.level <= 1e-12;
-    if (!finished) solver.factorize(problem.evaluate(x, true, true).hessian);
-  } else if (spec.gravity_preload) {
-    // Self-weight first, in its own path (it may bend a soft body noticeably).
-    PathCallbacks gravity;
-    gravity.apply_load = [&](double level) { load.gravity_scale = level; };
-    gravity.on_converged = [](double, const Vector&, bool, const NewtonReport&) {};
-    // Self-weight barely deforms a soft actuator (3CA: 3° of sag): try it in one step
-    // (the step controller still cuts back if Newton struggles). Ramping it like the
-    // pressure cost 5 steps and ~17 factorisations on the thesis 3CA.
-    StepSettings one_step = spec.steps;
-    one_step.initial_increment = one_step.max_increment = 1.0;
-    const PathResult preload = follow_load_path(problem, x, solver, {1.0}, gravity, spec.newton, one_step);
-    out.path.stats = preload.stats;
-    if (!preload.completed) {
-      out.path = preload;
-      out.outcome = PathOutcome::stalled;
-      out.diagnosis = "the body does not carry its own weight: the gravity preload stopped at " +
-                      fmt(100 * preload.reached_level, 3) + " % (" + to_string(preload.failure) + ": " +
-                      preload.message + "). Check the supports and the materials.";
-      return out;
-    }
-  }
-  // The reference for the lowest-mode check at a stall.
-  const Vector x_rest = from_rest ? x : resumed.front().x;
+  if (!from_rest) start = resume_from(c, resumed, x, out);
+  else if (spec.gravity_preload && !preload_gravity(c, x, out)) return out;
+  const Vector x_rest = from_rest ? x : resumed.front().x;  // the reference for the lowest-mode check at a stall
   resumed = {};
-  if (from_rest) {
-    const Evaluation e0 = problem.evaluate(x, true, true);
-    solver.factorize(e0.hessian);
-    PressureState s0{0.0, chamber.volume(x), pv_stiffness(problem, chamber, solver, x, spec.newton, nullptr),
-                     solver.status() == LinearSolver::Status::positive_definite, 0, true};
-    out.history.push_back(s0);
-    if (on_state) on_state(s0, x);
-    if (log) log->append({0.0, spec.steps.initial_increment, s0, out.path.stats, x});
-  }
+  if (from_rest) record_rest_state(c, x, log, out);
 
-  std::vector<double> levels;
-  for (double p : spec.output_pressures_kPa) levels.push_back(p / spec.max_pressure_kPa);
-  PathCallbacks callbacks;
-  std::pair<double, const Vector*> converged{0.0, nullptr};  // the state on_converged was last given
-  callbacks.apply_load = [&](double level) {
-    set_pressures(level);
-    load.dirichlet_scale = level;
-  };
-  callbacks.on_converged = [&](double level, const Vector& xs, bool is_output, const NewtonReport& report) {
-    PressureState s{level * spec.max_pressure_kPa, chamber.volume(xs),
-                    pv_stiffness(problem, chamber, solver, xs, spec.newton, &report.last.hessian),
-                    report.tangent_positive_definite, report.iterations, is_output};
-    out.history.push_back(s);
-    if (on_state) on_state(s, xs);
-    converged = {level, &xs};
-  };
-  if (log)
-    callbacks.on_increment = [&](double next_increment, const PathStatistics& stats) {
-      log->append({converged.first, next_increment, out.history.back(), stats, *converged.second});
-    };
-  const PathStatistics preload_stats = out.path.stats;
-  out.path = follow_load_path(problem, x, solver, levels, callbacks, spec.newton, spec.steps, start);
-  out.path.stats.steps += preload_stats.steps;
-  out.path.stats.newton_iterations += preload_stats.newton_iterations;
-  out.path.stats.cutbacks += preload_stats.cutbacks;
-  out.path.stats.second_starts += preload_stats.second_starts;
-  // The solver's running totals: taken again after volume control, which uses it too.
-  auto take_solver_costs = [&] {
-    out.analyse_s = solver.analyse_seconds;
-    out.factorize_s = solver.factorize_seconds;
-    out.solve_s = solver.solve_seconds;
-    out.factorizations = solver.factorizations;
-    out.lu_fallbacks = solver.lu_fallbacks;
-    out.shifted_factorizations = solver.shifted_factorizations;
-    out.reused_solves = solver.reused_solves;
-    out.cg_iterations = solver.cg_iterations;
-    out.factor_flops = solver.factor_flops;
-    out.factor_nonzeros = solver.factor_nonzeros;
-  };
-  take_solver_costs();
-  out.reached_pressure_kPa = out.history.back().pressure_kPa;
+  // 2. Pressure control through the output pressures.
+  follow_pressure(c, x, start, log, out);
   if (out.path.completed) {
     out.outcome = PathOutcome::completed;
     out.diagnosis = "reached " + fmt(spec.max_pressure_kPa) + " kPa";
     return out;
   }
 
-  const PressureState& last = out.history.back();
-  const double k0 = out.history.front().pv_stiffness_kPa_per_mm3;
-  const double ratio = last.pv_stiffness_kPa_per_mm3 / k0;
+  // 3. A stop: past it by volume control where the pressure-volume curve flattens, else named.
+  const PressureState last = out.history.back();
+  const double ratio = last.pv_stiffness_kPa_per_mm3 / out.history.front().pv_stiffness_kPa_per_mm3;
   const bool flattened = ratio < spec.limit.stiffness_fraction || !last.tangent_positive_definite;
   const bool flattening = ratio < 5 * spec.limit.stiffness_fraction;
   const bool try_volume_control = ratio < spec.limit.volume_control_fraction;
   const Vector x_stall = x;  // volume control moves x; the lowest-mode check looks at the stall
-  if ((flattened || try_volume_control) && spec.limit.follow_with_volume_control && out.history.size() >= 2) {
-    // Past the pressure maximum by prescribing the chamber volume instead.
-    const PressureState& prev = out.history[out.history.size() - 2];
-    double level = last.pressure_kPa / spec.max_pressure_kPa;
-    const double step = std::max(last.chamber_volume_mm3 - prev.chamber_volume_mm3, 1e-4 * last.chamber_volume_mm3);
-    VolumeControlProblem vp;
-    vp.apply_level = set_pressures;
-    vp.volume = [&](const Vector& xs) { return chamber.volume(xs); };
-    vp.volume_gradient = [&](const Vector& xs) { return chamber.gradient(xs); };
-    vp.pressure_per_level_MPa = spec.max_pressure_kPa * kMPaPerKPa;
-    const VolumeControlState before{prev.pressure_kPa / spec.max_pressure_kPa, prev.chamber_volume_mm3, 0,
-                                    prev.tangent_positive_definite};
-    VolumeControlSettings vc_settings;
-    vc_settings.verbose = spec.steps.verbose;
-    vc_settings.augmented_cg = spec.limit.volume_control_by_cg;
-    const VolumeControlResult vc = follow_volume(problem, x, level, solver, vp, step, &before, vc_settings);
-    for (std::size_t i = 1; i < vc.states.size(); ++i)
-      out.beyond_limit.push_back({vc.states[i].level * spec.max_pressure_kPa, vc.states[i].volume,
-                                  std::isnan(vc.states[i].level_slope_per_mm3)
-                                      ? 0.0
-                                      : vc.states[i].level_slope_per_mm3 * spec.max_pressure_kPa,
-                                  vc.states[i].tangent_positive_definite, vc.states[i].iterations, false});
-    out.path.stats.newton_iterations += vc.newton_iterations;
-    take_solver_costs();
-    // x is now the traced state of the largest pressure (at least the last one's): report that one.
-    out.reached_pressure_kPa = level * spec.max_pressure_kPa;
-    if (vc.passed_peak) {
-      out.outcome = PathOutcome::limit_point;
-      out.limit_kind = LimitKind::traced;
-      out.estimated_limit_pressure_kPa = vc.peak_level * spec.max_pressure_kPa;
-      out.diagnosis = "limit point (ballooning) at " + fmt(out.estimated_limit_pressure_kPa) +
-                      " kPa: chamber-volume control followed the path past the pressure maximum (" + vc.message +
-                      ", the loaded volume growing from " + fmt(last.chamber_volume_mm3) + " to " +
-                      fmt(vc.states.back().volume) + " mm³). Pressure control cannot pass it; this is the burst "
-                      "mode of this design. The returned state is the one at the largest pressure.";
-      return out;
-    }
-    Vector x_end = x;
-    NewtonReport landing;
-    if (level >= 1.0) {
-      set_pressures(1.0);
-      landing = solve_newton(problem, x_end, solver, spec.newton);
-    }
-    if (level >= 1.0 && !landing.converged) {
-      // Volume control climbed past the requested pressure but Newton cannot land on it (a solver
-      // limited to a few iterations): no state at the requested pressure, so no answer; the stall
-      // of pressure control is reported at its last state.
-      x = x_stall;
-      level = last.pressure_kPa / spec.max_pressure_kPa;
-      set_pressures(level);
-      out.reached_pressure_kPa = last.pressure_kPa;
-      out.beyond_limit.clear();  // its states overshoot the requested pressure: not part of the answer
-      out.diagnosis = " Volume control from there climbed past the requested pressure without a maximum (" +
-                      vc.message + "), where Newton could not land on it (" + landing.message + ").";
-    } else if (level >= 1.0) {
-      // No maximum, and the path climbed to the requested pressure: the stall was numerical (a thin
-      // cap that balloons and tightens again, a Newton step pressure control could not take). Volume
-      // control stops at the first state at or above it; Newton at exactly the requested pressure
-      // from there lands on it (the branch is stable again).
-      x = x_end, level = 1.0;
-      set_pressures(level);
-      const PressureState s{level * spec.max_pressure_kPa, chamber.volume(x),
-                            pv_stiffness(problem, chamber, solver, x, spec.newton, nullptr),
-                            landing.converged ? landing.tangent_positive_definite : true,
-                            landing.iterations, true};
-      take_solver_costs();
-      out.outcome = PathOutcome::completed;
-      out.reached_pressure_kPa = s.pressure_kPa;
-      out.diagnosis = "reached " + fmt(s.pressure_kPa) + " kPa: pressure control stopped at " + fmt(last.pressure_kPa) +
-                      " kPa (" + to_string(out.path.failure) + ", dp/dV " + fmt(100 * ratio, 3) +
-                      " % of its initial value) and chamber-volume control carried the path on to the requested "
-                      "pressure without a maximum (" + vc.message + ")";
-      out.history.push_back(s);  // invalidates `last`
-      if (on_state) on_state(s, x);
-      return out;
-    } else {
-      // No maximum: keep the pressure-controlled diagnosis below, with what volume control saw.
-      out.diagnosis = " Volume control from there: " + vc.message + ".";
-    }
-  }
+  if ((flattened || try_volume_control) && spec.limit.follow_with_volume_control && out.history.size() >= 2 &&
+      settled_by_volume_control(c, x, x_stall, ratio, out))
+    return out;
   const StopContext context{problem, elastic_form_of(problem), spec, solver, load, set_pressures, x_rest, x_stall,
                             last, ratio, flattened, flattening};
   name_the_stop(context, x, out);
