@@ -23,35 +23,48 @@ namespace softarm::fem {
 namespace {
 /// The output states a rod's table takes: those with a positive definite tangent.
 bool is_table_row(const TcaCellState& s) { return s.is_output && s.bending_compliance_per_Nmm2 > 0; }
-}  // namespace
 
-TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad& end_load) {
-  const auto t0 = std::chrono::steady_clock::now();
-  validate(spec.design);
-  TcaCellResult out;
-  out.ring = ring;
-  out.pitch_mm = spec.design.actuator.pitch();
-  out.ring_centre_z_mm = ring >= 1 ? spec.design.actuator.ring_centre_z(ring) : 0.0;
-  // The mirror plane, from the pressures and the end moment (gravity has no part here).
+/// The half or full model the cell is solved on: the mirror plane from the pressures and the end
+/// moment (gravity has no part here); a moment keeps the plane only if it turns about its normal.
+ModelChoice cell_model(const TcaSceneSpec& spec, const CellEndLoad& end_load) {
   TcaSceneSpec frame_spec = spec;
   frame_spec.gravity_m_s2 = Eigen::Vector3d::Zero();
-  out.model = choose_tca_model(frame_spec);
-  if (out.model.half) {
-    // A moment keeps the mirror plane only if it turns about the plane's normal.
-    const double angle = out.model.frame_angle_rad;
-    if (std::abs(end_load.moment_Nmm.dot(Eigen::Vector2d(std::cos(angle), std::sin(angle)))) >
-        1e-12 * (1 + end_load.moment_Nmm.norm())) {
-      frame_spec.allow_symmetry = false;
-      out.model = choose_tca_model(frame_spec);
-      out.model.reason = "the end moment turns out of the mirror plane";
-    }
-  }
-  const double theta = out.model.frame_angle_rad;
-  const Mesh mesh = mesh_tca_cell(spec.design, ring, solid_mesh_options(spec, out.model));
-  const std::vector<Material> materials = tca_part_materials(spec);
+  ModelChoice model = choose_tca_model(frame_spec);
+  if (!model.half) return model;
+  const double angle = model.frame_angle_rad;
+  if (std::abs(end_load.moment_Nmm.dot(Eigen::Vector2d(std::cos(angle), std::sin(angle)))) <=
+      1e-12 * (1 + end_load.moment_Nmm.norm()))
+    return model;
+  frame_spec.allow_symmetry = false;
+  model = choose_tca_model(frame_spec);
+  model.reason = "the end moment turns out of the mirror plane";
+  return model;
+}
 
-  // Positions: the mesh's nodes, then the pilot (a, b, c) at the origin.
-  const int pilot = mesh.num_nodes();
+/// One ring pitch of the 3CA as an energy problem: the mesh's nodes, then the pilot (a, b, c) of
+/// the top face's plane z = a + b·x + c·y at the origin; the bottom face held in its plane, the top
+/// face on the pilot's plane (PlaneFaceForm), the end loads on the pilot and the chamber pressures.
+struct CellProblem {
+  Mesh mesh;
+  std::vector<Material> materials;
+  int pilot = 0;
+  double share = 1.0;  // a half model carries half of every load
+  Eigen::Vector2d moment_solver_frame = Eigen::Vector2d::Zero();
+  bool end_loaded = false;
+  std::unique_ptr<EnergyProblem> problem;
+  std::shared_ptr<PlaneFaceForm> plane;
+  LoadState load;
+  ChamberLoads chambers;
+};
+
+void build_cell_problem(const TcaSceneSpec& spec, int ring, const CellEndLoad& end_load, TcaCellResult& out,
+                        CellProblem& cell) {
+  const double theta = out.model.frame_angle_rad;
+  cell.mesh = mesh_tca_cell(spec.design, ring, solid_mesh_options(spec, out.model));
+  cell.materials = tca_part_materials(spec);
+  const Mesh& mesh = cell.mesh;
+  cell.pilot = mesh.num_nodes();
+  const int pilot = cell.pilot;
   Vector X(3 * (pilot + 1));
   X.head(3 * pilot) = flattened_positions(mesh);
   X.tail<3>().setZero();
@@ -61,120 +74,164 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
     for (int n : it->second) bc.fix(3 * n + 1);
   hold_in_plane_rigid_motion(mesh, mesh.node_sets.at("bottom"), out.model.half, bc);
   if (out.model.half) bc.fix(3 * pilot + 2);  // no slope across the mirror plane
-  EnergyProblem problem(X, bc);
-  auto elastic = make_elastic_form(mesh, materials, VolumetricTreatment::projected_dilatation,
+  cell.problem = std::make_unique<EnergyProblem>(X, bc);
+  EnergyProblem& problem = *cell.problem;
+  auto elastic = make_elastic_form(mesh, cell.materials, VolumetricTreatment::projected_dilatation,
                                    hex20_integration(mesh, spec.integration));
   out.element_name = elastic->element_name();
   problem.add_form(elastic);
-  const double mu = stiffest_silicone_shear_modulus(mesh, materials);
-  auto plane = std::make_shared<PlaneFaceForm>(mesh.node_sets.at("top"), pilot, out.pitch_mm, kPlanePenaltyRatio * mu);
-  problem.add_form(plane);
-  if (spec.newton.rotate_stiff_parts) problem.set_stiff_inclusions(stiff_parts(mesh, materials));
-  LoadState load;
-  load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
+  const double mu = stiffest_silicone_shear_modulus(mesh, cell.materials);
+  cell.plane = std::make_shared<PlaneFaceForm>(mesh.node_sets.at("top"), pilot, out.pitch_mm, kPlanePenaltyRatio * mu);
+  problem.add_form(cell.plane);
+  if (spec.newton.rotate_stiff_parts) problem.set_stiff_inclusions(stiff_parts(mesh, cell.materials));
+  cell.load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
   // End loads on the pilot, before the pressures (DofLoadForm): the axial force on a, and the
   // moment's work M·φ with the face's rotation φ = (c, −b) about the solver's x and y
   // (z = a + b·x + c·y: turning by φ_y about +y gives b = −φ_y, by φ_x about +x gives c = φ_x).
-  const Eigen::Vector2d m = rotation_about_z(-theta).topLeftCorner<2, 2>() * end_load.moment_Nmm;
-  const double share = out.model.half ? 0.5 : 1.0;  // a half model carries half of every load
-  const bool end_loaded = end_load.axial_force_N != 0 || end_load.moment_Nmm.norm() > 0;
+  cell.moment_solver_frame = rotation_about_z(-theta).topLeftCorner<2, 2>() * end_load.moment_Nmm;
+  const Eigen::Vector2d& m = cell.moment_solver_frame;
+  cell.share = out.model.half ? 0.5 : 1.0;
+  cell.end_loaded = end_load.axial_force_N != 0 || end_load.moment_Nmm.norm() > 0;
   problem.add_form(std::make_shared<DofLoadForm>(
       std::vector<int>{3 * pilot, 3 * pilot + 1, 3 * pilot + 2},
-      std::vector<double>{share * end_load.axial_force_N, -share * m.y(), share * m.x()}, load));
-  const ChamberLoads chambers = add_chamber_loads(
-      mesh, {spec.chamber_pressure_kPa.begin(), spec.chamber_pressure_kPa.end()}, load, problem);
+      std::vector<double>{cell.share * end_load.axial_force_N, -cell.share * m.y(), cell.share * m.x()}, cell.load));
+  cell.chambers = add_chamber_loads(mesh, {spec.chamber_pressure_kPa.begin(), spec.chamber_pressure_kPa.end()},
+                                    cell.load, problem);
   problem.finalize();
   out.dofs = problem.num_dofs();
+}
 
-  // The scene bends away from its pressurised chambers (tca_bend_direction), solver frame.
-  const Eigen::Vector2d bend = (rotation_about_z(-theta) * tca_bend_direction(spec.chamber_pressure_kPa)).head<2>();
-  const double L = out.pitch_mm;
-  double kg = 0;
-  for (const auto& part : part_masses_kg(mesh, materials, 1 / share)) kg += part.second;
-  out.mass_per_length_kg_per_mm = kg / L;
-  // The direction the curvature is signed by: the pressures' bend, else the end moment's, else x.
-  Eigen::Vector2d d = bend.norm() > 0 ? bend : Eigen::Vector2d(m.y(), -m.x());
-  d = d.norm() > 0 ? d.normalized() : Eigen::Vector2d::UnitX();
-  // The end face's compliance from the tangent at a state: uᵀK⁻¹u for a unit generalised force
-  // u on a (the axial force), and on (b, c) along d (a moment about the axis normal to d:
-  // turning the face towards d lowers the plane along d). dφ = uᵀK⁻¹u·share·dM, κ = φ/L;
-  // dλ = uᵀK⁻¹u·share·dN/L. In a half model d lies in the mirror plane and c is fixed.
-  LinearSolver compliance_solver;  // one symbolic analysis for every state (the pattern never changes)
-  // Solver frame → user frame (the mirror plane's turn about z), and the face's rotation
-  // φ = (c, −b) = T·(b, c) about the solver's x and y, whose work-conjugate moment M gives the
-  // generalised forces (F_b, F_c) = Tᵀ·M.
-  const Eigen::Matrix2d to_user = rotation_about_z(theta).topLeftCorner<2, 2>();
-  Eigen::Matrix2d T;
-  T << 0, 1, -1, 0;
-  const auto add_compliance = [&](TcaCellState& c, const Vector& xs) {
-    const AddElapsedSeconds timer(out.compliance_s);  // every return below counts
+/// Reads a converged state of the cell off its pilot: the stretch and curvature of the pitch, and
+/// the end face's compliances from the tangent there.
+class CellFaceReader {
+ public:
+  CellFaceReader(const TcaSceneSpec& spec, const CellProblem& cell, const TcaCellResult& out)
+      : cell_(cell), L_(out.pitch_mm), half_(out.model.half) {
+    const double theta = out.model.frame_angle_rad;
+    // The scene bends away from its pressurised chambers (tca_bend_direction), solver frame.
+    const Eigen::Vector2d bend =
+        (rotation_about_z(-theta) * tca_bend_direction(spec.chamber_pressure_kPa)).head<2>();
+    const Eigen::Vector2d& m = cell.moment_solver_frame;
+    // The direction the curvature is signed by: the pressures' bend, else the end moment's, else x.
+    d_ = bend.norm() > 0 ? bend : Eigen::Vector2d(m.y(), -m.x());
+    d_ = d_.norm() > 0 ? d_.normalized() : Eigen::Vector2d::UnitX();
+    // Solver frame → user frame (the mirror plane's turn about z), and the face's rotation
+    // φ = (c, −b) = T·(b, c) about the solver's x and y, whose work-conjugate moment M gives the
+    // generalised forces (F_b, F_c) = Tᵀ·M.
+    to_user_ = rotation_about_z(theta).topLeftCorner<2, 2>();
+    T_ << 0, 1, -1, 0;
+  }
+
+  TcaCellState state(double pressure_kPa, double volume_mm3, const Vector& xs) const {
+    TcaCellState c;
+    c.pressure_kPa = pressure_kPa;
+    const int pilot = cell_.pilot;
+    const double a = xs[3 * pilot], b = xs[3 * pilot + 1], cy = xs[3 * pilot + 2];
+    c.stretch = 1 + a / L_;
+    const Eigen::Vector2d towards(-b, -cy);  // the end face's normal leans this way
+    c.curvature_per_mm = std::atan(towards.norm()) / L_;
+    if (towards.dot(d_) < 0) c.curvature_per_mm = -c.curvature_per_mm;
+    const Eigen::Vector2d phi = T_ * Eigen::Vector2d(b, cy);
+    if (phi.norm() > 0) c.curvature_vector_per_mm = to_user_ * phi * (std::atan(phi.norm()) / phi.norm() / L_);
+    c.chamber_volume_mm3 = volume_mm3 / cell_.share;
+    c.plane_gap_mm = cell_.plane->max_gap(xs);
+    return c;
+  }
+
+  /// The end face's compliance from the tangent at xs: uᵀK⁻¹u for a unit generalised force u on a
+  /// (the axial force), and on (b, c) along d (a moment about the axis normal to d: turning the face
+  /// towards d lowers the plane along d). dφ = uᵀK⁻¹u·share·dM, κ = φ/L; dλ = uᵀK⁻¹u·share·dN/L.
+  /// In a half model d lies in the mirror plane and c is fixed. Left at zero where the tangent is
+  /// not positive definite.
+  void add_compliance(TcaCellState& c, const Vector& xs, double& seconds) {
+    const AddElapsedSeconds timer(seconds);  // every return below counts
+    const EnergyProblem& problem = *cell_.problem;
     const Evaluation e = problem.evaluate(xs, false, true);
-    LinearSolver& solver = compliance_solver;
-    if (solver.factorize(e.hessian) != LinearSolver::Status::positive_definite) return;
+    if (solver_.factorize(e.hessian) != LinearSolver::Status::positive_definite) return;
     const auto unit = [&](int component) {
       Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.num_dofs());
-      u[3 * pilot + component] = 1;
+      u[3 * cell_.pilot + component] = 1;
       problem.zero_prescribed(u);
       return u;
     };
     const Eigen::VectorXd ua = unit(0), ub = unit(1), uc = unit(2);
-    const Eigen::VectorXd kb = solver.solve(ub), kc = solver.solve(uc);
+    const Eigen::VectorXd kb = solver_.solve(ub), kc = solver_.solve(uc);
     Eigen::Matrix2d g;  // the plane's (b, c) under unit (F_b, F_c)
     g << ub.dot(kb), ub.dot(kc), uc.dot(kb), uc.dot(kc);
-    c.bending_compliance_per_Nmm2 = d.dot(g * d) * share / L;
-    c.axial_compliance_per_N = ua.dot(solver.solve(ua)) * share / L;
-    Eigen::Matrix2d k = T * g * T.transpose() * share / L;  // d(κx, κy)/d(Mx, My), solver frame
-    if (out.model.half) k(0, 0) = k(1, 1);  // about the mirror plane's normal only: isotropic (header)
-    c.bending_compliance_matrix_per_Nmm2 = to_user * k * to_user.transpose();
-  };
-  const auto state_of = [&](double pressure_kPa, double volume_mm3, const Vector& xs) {
-    TcaCellState c;
-    c.pressure_kPa = pressure_kPa;
-    const double a = xs[3 * pilot], b = xs[3 * pilot + 1], cy = xs[3 * pilot + 2];
-    c.stretch = 1 + a / L;
-    const Eigen::Vector2d towards(-b, -cy);  // the end face's normal leans this way
-    c.curvature_per_mm = std::atan(towards.norm()) / L;
-    if (towards.dot(d) < 0) c.curvature_per_mm = -c.curvature_per_mm;
-    const Eigen::Vector2d phi = T * Eigen::Vector2d(b, cy);
-    if (phi.norm() > 0) c.curvature_vector_per_mm = to_user * phi * (std::atan(phi.norm()) / phi.norm() / L);
-    c.chamber_volume_mm3 = volume_mm3 / share;
-    c.plane_gap_mm = plane->max_gap(xs);
-    return c;
-  };
-  Vector x = X;
-  if (chambers.loaded.empty()) {
-    // No pressure: the end loads alone, in one step (the controller cuts back if it must).
-    LinearSolver solver;
-    PathCallbacks callbacks;
-    callbacks.apply_load = [&](double level) { load.gravity_scale = level; };
-    callbacks.on_converged = [](double, const Vector&, bool, const NewtonReport&) {};
-    StepSettings one_step = spec.steps;
-    one_step.initial_increment = one_step.max_increment = 1.0;
-    if (end_loaded) {
-      out.path.path = follow_load_path(problem, x, solver, {1.0}, callbacks, spec.newton, one_step);
-    } else {  // no load at all: the rest state is the equilibrium (Newton has no residual to scale by)
-      out.path.path.completed = true;
-      out.path.path.reached_level = 1.0;
-      out.path.path.message = "no load: the rest state";
-    }
-    out.path.outcome = out.path.path.completed ? PathOutcome::completed : PathOutcome::stalled;
-    out.path.diagnosis = out.path.path.message;
-    out.states.push_back(state_of(0.0, 0.0, x));
-    out.states.back().newton_iterations = out.path.path.stats.newton_iterations;
-    out.states.back().is_output = true;
-    if (out.path.path.completed) add_compliance(out.states.back(), x);
+    const double share = cell_.share;
+    c.bending_compliance_per_Nmm2 = d_.dot(g * d_) * share / L_;
+    c.axial_compliance_per_N = ua.dot(solver_.solve(ua)) * share / L_;
+    Eigen::Matrix2d k = T_ * g * T_.transpose() * share / L_;  // d(κx, κy)/d(Mx, My), solver frame
+    if (half_) k(0, 0) = k(1, 1);  // about the mirror plane's normal only: isotropic (header)
+    c.bending_compliance_matrix_per_Nmm2 = to_user_ * k * to_user_.transpose();
+  }
+
+ private:
+  const CellProblem& cell_;
+  double L_;
+  bool half_;
+  Eigen::Vector2d d_;
+  Eigen::Matrix2d to_user_, T_;
+  LinearSolver solver_;  // one symbolic analysis for every state (the pattern never changes)
+};
+
+/// No pressure: the end loads alone, in one step (the controller cuts back if it must); the rest
+/// state itself where there is no load at all (Newton has no residual to scale by).
+void run_end_loads_only(const TcaSceneSpec& spec, CellProblem& cell, CellFaceReader& face, Vector& x,
+                        TcaCellResult& out) {
+  LinearSolver solver;
+  PathCallbacks callbacks;
+  callbacks.apply_load = [&](double level) { cell.load.gravity_scale = level; };
+  callbacks.on_converged = [](double, const Vector&, bool, const NewtonReport&) {};
+  StepSettings one_step = spec.steps;
+  one_step.initial_increment = one_step.max_increment = 1.0;
+  if (cell.end_loaded) {
+    out.path.path = follow_load_path(*cell.problem, x, solver, {1.0}, callbacks, spec.newton, one_step);
   } else {
-    const PressurePathSpec path = tca_pressure_path(spec, chambers, end_loaded, 0);
-    out.path = run_pressure_path(problem, chambers.loaded, load, x, path, [&](const PressureState& s, const Vector& xs) {
-      out.states.push_back(state_of(s.pressure_kPa, s.chamber_volume_mm3, xs));
-      out.states.back().newton_iterations = s.newton_iterations;
-      out.states.back().is_output = s.is_output;
-      if (s.is_output) add_compliance(out.states.back(), xs);
-    });
+    out.path.path.completed = true;
+    out.path.path.reached_level = 1.0;
+    out.path.path.message = "no load: the rest state";
+  }
+  out.path.outcome = out.path.path.completed ? PathOutcome::completed : PathOutcome::stalled;
+  out.path.diagnosis = out.path.path.message;
+  out.states.push_back(face.state(0.0, 0.0, x));
+  out.states.back().newton_iterations = out.path.path.stats.newton_iterations;
+  out.states.back().is_output = true;
+  if (out.path.path.completed) face.add_compliance(out.states.back(), x, out.compliance_s);
+}
+}  // namespace
+
+TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad& end_load) {
+  const auto t0 = std::chrono::steady_clock::now();
+  validate(spec.design);
+  TcaCellResult out;
+  out.ring = ring;
+  out.pitch_mm = spec.design.actuator.pitch();
+  out.ring_centre_z_mm = ring >= 1 ? spec.design.actuator.ring_centre_z(ring) : 0.0;
+  out.model = cell_model(spec, end_load);
+  CellProblem cell;
+  build_cell_problem(spec, ring, end_load, out, cell);
+  double kg = 0;
+  for (const auto& part : part_masses_kg(cell.mesh, cell.materials, 1 / cell.share)) kg += part.second;
+  out.mass_per_length_kg_per_mm = kg / out.pitch_mm;
+
+  CellFaceReader face(spec, cell, out);
+  Vector x = cell.problem->reference_positions();
+  if (cell.chambers.loaded.empty()) {
+    run_end_loads_only(spec, cell, face, x, out);
+  } else {
+    const PressurePathSpec path = tca_pressure_path(spec, cell.chambers, cell.end_loaded, 0);
+    out.path = run_pressure_path(*cell.problem, cell.chambers.loaded, cell.load, x, path,
+                                 [&](const PressureState& s, const Vector& xs) {
+                                   out.states.push_back(face.state(s.pressure_kPa, s.chamber_volume_mm3, xs));
+                                   out.states.back().newton_iterations = s.newton_iterations;
+                                   out.states.back().is_output = s.is_output;
+                                   if (s.is_output) face.add_compliance(out.states.back(), xs, out.compliance_s);
+                                 });
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  out.assembly_s = problem.assembly_seconds();
-  out.evaluations = problem.evaluations();
+  out.assembly_s = cell.problem->assembly_seconds();
+  out.evaluations = cell.problem->evaluations();
   return out;
 }
 
