@@ -365,6 +365,201 @@ void print_answer(const DesignConfig& config, const DesignRun& run, double ref_s
   }
 }
 
+/// What the rounds of search and verification carry from one round to the next.
+struct RoundState {
+  SolidCorrection correction;    // the 3D check's correction of the search model (solid_correction.hpp)
+  DiscrepancyModel discrepancy;  // the verified designs' g_cells − g_search (discrepancy_model.hpp)
+  double radius = 0;             // the trust region's half-width about the best verified design
+  std::vector<double> x0;        // where the next search starts
+  std::optional<objectives::ArmMeasures> rod_check;  // the last optimum at the check fidelity, uncorrected
+  int corrections = 0, improvements = 0;              // rounds of each kind run so far
+  RoundPurpose purpose = RoundPurpose::first_search;
+};
+
+/// A verified design teaches the discrepancy model its g_cells − g_search.
+void learn(const DesignConfig& config, double ref_strain, RoundState& state, const std::vector<double>& x,
+           const objectives::ArmMeasures& accurate, const objectives::ArmMeasures& searched) {
+  state.discrepancy.add(normalised_design(config, x), constraints_of(config, accurate, ref_strain).values,
+                        constraints_of(config, searched, ref_strain).values);
+}
+
+/// A round after the first: what it searches for and with which correction, in the log and the console.
+void announce_round(const DesignConfig& config, const RoundState& state, const DesignRun& run, double ref_strain,
+                    SearchLog& log) {
+  const bool improving = state.purpose == RoundPurpose::improvement;
+  const int count = improving ? state.improvements : state.corrections;
+  log.next_round(run.result.evaluations, purpose_name(state.purpose) + (" " + std::to_string(count) + ": "));
+  std::cout << "\n" << purpose_name(state.purpose) << " round " << count << " of at most "
+            << (improving ? config.improvement_rounds : config.solid_corrections) << ": search again "
+            << (improving ? "about the best verified design" : "from the last optimum")
+            << " with the search model corrected by the " << (config.verify_on_cells ? "verified designs" : "3D check")
+            << " ("
+            << (config.verify_on_cells ? state.discrepancy.describe(constraints_of(config, {}, ref_strain).names)
+                                       : state.correction.describe())
+            << ")\n";
+}
+
+/// After a round verified on the cell rod: true, with the next round's purpose set, where another
+/// round is due; false, with the reason in the run, where the rounds end.
+bool another_round_after_verification(const DesignConfig& config, DesignRun& run, RoundState& state,
+                                      const std::optional<objectives::CellRodEvaluation>& verification,
+                                      const objectives::ArmMeasures& raw, double ref_strain) {
+  if (!verification || !verification->ok()) {
+    run.rounds_stop_reason = "the verification could not measure the last design";
+    std::cout << "no further round: " << run.rounds_stop_reason << "\n";
+    return false;
+  }
+  learn(config, ref_strain, state, run.optimum_x, verification->measures, raw);
+  state.x0 = best_verified(config, run, ref_strain, state.x0);
+  if (meets_every_requirement(config, verification->measures, ref_strain)) {
+    // Trust-region model management past feasibility: the model is now corrected at this design
+    // too, and the next search looks for a better one about the best verified design.
+    if (state.improvements == config.improvement_rounds) {
+      run.rounds_stop_reason = config.improvement_rounds == 0
+                                   ? "the verification meets every requirement (check.improvement_rounds is 0)"
+                                   : "the verification meets every requirement; every improvement round has run";
+      std::cout << "the verification on the cell rod meets every requirement: no further round ("
+                << run.rounds_stop_reason << ")\n";
+      return false;
+    }
+    state.purpose = RoundPurpose::improvement;
+    ++state.improvements;
+    return true;
+  }
+  if (state.corrections == config.solid_corrections) {
+    run.rounds_stop_reason = "the last verified design misses a requirement; every correction round has run";
+    return false;
+  }
+  // The next search is corrected by every verified design, within a trust region half as wide
+  // (the linear discrepancy was not enough to hold this one), about the best verified design.
+  state.radius *= 0.5;
+  state.purpose = RoundPurpose::correction;
+  ++state.corrections;
+  return true;
+}
+
+/// Without the cell rod's verification: true where the 3D check of one segment asks for a
+/// correction round (set in the state), false where the rounds end.
+bool another_round_after_3d_check(const DesignConfig& config, const DesignRun& run, RoundState& state,
+                                  const std::optional<objectives::SolidSegmentCheck>& check,
+                                  const objectives::ArmMeasures& raw) {
+  if (state.corrections == config.solid_corrections || !check) return false;
+  if (check->meets_bending() && check->holds_working_pressure()) {
+    std::cout << "the 3D check meets bending and holds the working pressure: no correction needed\n";
+    return false;
+  }
+  if (!run.result.feasible) {
+    std::cout << "no correction round: the search found no design that meets every requirement of its own model\n";
+    return false;
+  }
+  const SolidCorrection next = updated_correction(state.correction, *check, raw, config.check.working_pressure_kPa);
+  if (next.checks == state.correction.checks) {
+    std::cout << "no correction round: the 3D path stalled, so it measured neither bending at the working pressure "
+                 "nor a limit point\n";
+    return false;
+  }
+  state.correction = next;
+  state.x0 = run.optimum_x;
+  state.purpose = RoundPurpose::correction;
+  ++state.corrections;
+  return true;
+}
+
+/// Search, verify the optimum on the cell rod (and, if asked, one segment in 3D), and while the
+/// verification finds a requirement not met, correct the search model by it and search again from
+/// the last optimum (solid_correction.hpp); past feasibility, improvement rounds. The verification
+/// decides feasibility.
+void run_rounds(const DesignConfig& config, DesignRun& run, RoundState& state, double ref_strain, SearchLog& log,
+                DesignCheckpoint& checkpoint, CellCluster& cells, Clock::time_point t0) {
+  for (int round = 0;; ++round) {
+    if (round > 0) announce_round(config, state, run, ref_strain, log);
+    const double verification_s = !config.verify_on_cells ? 0.0
+                                  : run.thesis_verification ? run.thesis_verification->measures.seconds
+                                  : 240.0;  // a verification's cells on 2 cores, before one has been timed
+    const bool improving = state.purpose == RoundPurpose::improvement;
+    const int budget = improving && config.improvement_evaluations > 0
+                           ? std::min(config.improvement_evaluations, config.optimiser.max_evaluations)
+                           : config.optimiser.max_evaluations;
+    run.result = search(config, ref_strain, state.correction, state.discrepancy, state.radius, state.x0, budget,
+                        improving, checkpoint, log,
+                        run.rounds.empty() || !run.rounds.back().verification ? verification_s
+                                                                               : run.rounds.back().verification->measures.seconds);
+    run.optimum_x = run.result.x;
+    if (improving) {
+      if (const auto stop = improvement_stop(config, run, ref_strain)) {
+        run.rounds_stop_reason = *stop;
+        std::cout << run.rounds_stop_reason << "\n";
+        run.optimum_x = run.rounds.back().optimum_x;  // the answer stays a verified design (chosen after)
+        return;
+      }
+    }
+    const objectives::ArmMeasures raw = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.model);
+    run.optimum = corrected(raw, state.correction);
+    run.optimum_uncorrected = raw;
+    print_optimum(config, run.result, run.optimum, ref_strain, state.correction, state.discrepancy);
+    state.rod_check = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.check);
+    std::optional<objectives::SolidSegmentCheck> check;
+    if (config.solid_check_segment > 0) check = check_in_3d(config, run.optimum_x, *state.rod_check, checkpoint);
+    std::optional<objectives::CellRodEvaluation> verification;
+    if (config.verify_on_cells) verification = verify_on_cells(config, run.optimum_x, raw, ref_strain, checkpoint, cells, t0);
+    run.rounds.push_back({state.purpose, state.correction, run.optimum_x, run.optimum, run.result.feasible, check,
+                          verification, raw});
+    run.answer_round = run.rounds.size() - 1;
+    const bool another = config.verify_on_cells
+                             ? another_round_after_verification(config, run, state, verification, raw, ref_strain)
+                             : another_round_after_3d_check(config, run, state, check, raw);
+    if (!another) return;
+  }
+}
+
+/// The answer is the best verified design (the first that meets every requirement ends the rounds;
+/// with none, the least violating), not merely the last.
+void choose_answer(const DesignConfig& config, DesignRun& run, RoundState& state, double ref_strain) {
+  if (!config.verify_on_cells || run.rounds.empty()) return;
+  run.answer_round = best_round(config, run, ref_strain);
+  if (run.answer_round + 1 == run.rounds.size()) return;
+  const SearchRound& a = run.rounds[run.answer_round];
+  std::cout << "the answer is round " << run.answer_round << "'s design, the best verified one (every requirement "
+               "met first, then the objective; else the least violation)\n";
+  run.optimum_x = a.optimum_x;
+  run.optimum = a.optimum;
+  run.optimum_uncorrected = a.optimum_uncorrected;
+  state.rod_check = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.check);
+}
+
+/// The answer re-checked by the search model at the check fidelity, and the difference it makes.
+void recheck_answer(const DesignConfig& config, DesignRun& run, const RoundState& state, double ref_strain) {
+  run.check_reference_strain = ref_strain;
+  run.check = corrected(*state.rod_check, state.correction);
+  print_measures("optimum re-checked by the search model (" + std::to_string(config.check.rod_nodes_per_segment) +
+                     " rod nodes per segment, " + std::to_string(config.check.pressure_steps) + " pressure steps" +
+                     (state.correction.checks ? ", corrected" : "") +
+                     (config.verify_on_cells ? "; uncorrected: the rod's discretisation, not the verdict" : "") + ")",
+                 run.check);
+  print_constraints(constraints_of(config, run.check, run.check_reference_strain));
+  std::cout << "fidelity difference: mass " << fixed(100 * (run.check.mass_kg / run.optimum.mass_kg - 1), 2)
+            << " %, payload " << fixed(100 * (run.check.payload_kg / run.optimum.payload_kg - 1), 2) << " %, min bending "
+            << fixed(run.check.min_bending_deg - run.optimum.min_bending_deg, 2) << " deg, burst utilisation "
+            << fixed(run.check.burst_utilisation - run.optimum.burst_utilisation, 3) << "; search margin "
+            << fixed(100 * config.search_margin, 1) << " %\n";
+}
+
+/// The requirements file with the command line's overrides; `--fidelity fast` is the fibre rod's
+/// verdict alone, with its measured error printed.
+DesignConfig configured(const nlohmann::json& document, const DesignOverrides& overrides) {
+  DesignConfig config = read_design_config(document);
+  if (!overrides.output_directory.empty()) config.output_directory = overrides.output_directory;
+  if (!overrides.algorithm.empty()) config.optimiser.algorithm = overrides.algorithm;
+  if (overrides.max_evaluations > 0) config.optimiser.max_evaluations = overrides.max_evaluations;
+  if (overrides.fidelity == "fast") {
+    config.verify_on_cells = false;
+    config.solid_check_segment = 0;
+    config.solid_corrections = 0;
+    config.improvement_rounds = 0;
+  }
+  return config;
+}
+
 }  // namespace
 
 int run_design(const std::string& file, const DesignOverrides& overrides) {
@@ -372,16 +567,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
   if (!cells.root()) return serve_design(file, cells);
   const auto t0 = Clock::now();
   const nlohmann::json document = fem::load_json_file(file);  // read once: the config and the checkpoint's fingerprint
-  DesignConfig config = read_design_config(document);
-  if (!overrides.output_directory.empty()) config.output_directory = overrides.output_directory;
-  if (!overrides.algorithm.empty()) config.optimiser.algorithm = overrides.algorithm;
-  if (overrides.max_evaluations > 0) config.optimiser.max_evaluations = overrides.max_evaluations;
-  if (overrides.fidelity == "fast") {  // a first look: the fibre rod's verdict, with its measured error printed
-    config.verify_on_cells = false;
-    config.solid_check_segment = 0;
-    config.solid_corrections = 0;
-    config.improvement_rounds = 0;
-  }
+  const DesignConfig config = configured(document, overrides);
   prepare_output_directory(config.output_directory,
                            overrides.output_directory.empty() ? "output.directory" : "-o/--output");
   DesignCheckpoint checkpoint(config.output_directory, document, overrides.fresh);
@@ -403,158 +589,21 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
   print_measures("thesis design (Tables 7, 11)", run.thesis);
   print_constraints(constraints_of(config, run.thesis, ref_strain));
 
-  // Search, verify the optimum on the cell rod (and, if asked, one segment in 3D), and while the
-  // verification finds a requirement not met, correct the search model by it and search again from
-  // the last optimum (solid_correction.hpp). The verification decides feasibility.
-  SearchLog log(config, ref_strain, run.history);
-  SolidCorrection correction;
-  std::vector<double> x0 = run.thesis_x;
+  SearchLog log(config, ref_strain, run.history);  // history.csv, written as the searches go
+  RoundState state;
+  state.radius = config.trust_radius;
+  state.x0 = run.thesis_x;
   // The first search starts corrected: the start design (the baseline) verified on the cell rod
   // first, so that no search runs on the uncorrected rod, whose error is 20-50 % where the search goes.
-  DiscrepancyModel discrepancy;  // the verified designs' g_cells − g_search (discrepancy_model.hpp)
-  double radius = config.trust_radius;
-  const auto learn = [&](const std::vector<double>& x, const objectives::ArmMeasures& accurate,
-                         const objectives::ArmMeasures& searched) {
-    discrepancy.add(normalised_design(config, x), constraints_of(config, accurate, ref_strain).values,
-                    constraints_of(config, searched, ref_strain).values);
-  };
   if (config.verify_on_cells && (config.solid_corrections > 0 || config.improvement_rounds > 0)) {
     std::cout << "\nthe start design on the accurate model, to correct the first search by:\n";
     run.thesis_verification = verify_on_cells(config, run.thesis_x, run.thesis, ref_strain, checkpoint, cells, t0);
-    if (run.thesis_verification && run.thesis_verification->ok()) learn(run.thesis_x, run.thesis_verification->measures, run.thesis);
+    if (run.thesis_verification && run.thesis_verification->ok())
+      learn(config, ref_strain, state, run.thesis_x, run.thesis_verification->measures, run.thesis);
   }
-  std::optional<objectives::ArmMeasures> rod_check;  // the last optimum at the check fidelity, uncorrected
-  int corrections = 0, improvements = 0;              // rounds of each kind run so far
-  RoundPurpose purpose = RoundPurpose::first_search;
-  for (int round = 0;; ++round) {
-    if (round > 0) {
-      const bool improving = purpose == RoundPurpose::improvement;
-      const int count = improving ? improvements : corrections;
-      log.next_round(run.result.evaluations, purpose_name(purpose) + (" " + std::to_string(count) + ": "));
-      std::cout << "\n" << purpose_name(purpose) << " round " << count << " of at most "
-                << (improving ? config.improvement_rounds : config.solid_corrections) << ": search again "
-                << (improving ? "about the best verified design" : "from the last optimum")
-                << " with the search model corrected by the " << (config.verify_on_cells ? "verified designs" : "3D check")
-                << " ("
-                << (config.verify_on_cells ? discrepancy.describe(constraints_of(config, {}, ref_strain).names)
-                                           : correction.describe())
-                << ")\n";
-    }
-    const double verification_s = !config.verify_on_cells ? 0.0
-                                  : run.thesis_verification ? run.thesis_verification->measures.seconds
-                                  : 240.0;  // a verification's cells on 2 cores, before one has been timed
-    const int budget = purpose == RoundPurpose::improvement && config.improvement_evaluations > 0
-                           ? std::min(config.improvement_evaluations, config.optimiser.max_evaluations)
-                           : config.optimiser.max_evaluations;
-    run.result = search(config, ref_strain, correction, discrepancy, radius, x0, budget, purpose == RoundPurpose::improvement,
-                        checkpoint, log,
-                        run.rounds.empty() || !run.rounds.back().verification ? verification_s
-                                                                               : run.rounds.back().verification->measures.seconds);
-    run.optimum_x = run.result.x;
-    if (purpose == RoundPurpose::improvement) {
-      if (const auto stop = improvement_stop(config, run, ref_strain)) {
-        run.rounds_stop_reason = *stop;
-        std::cout << run.rounds_stop_reason << "\n";
-        run.optimum_x = run.rounds.back().optimum_x;  // the answer stays a verified design (chosen below)
-        break;
-      }
-    }
-    const objectives::ArmMeasures raw = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.model);
-    run.optimum = corrected(raw, correction);
-    run.optimum_uncorrected = raw;
-    print_optimum(config, run.result, run.optimum, ref_strain, correction, discrepancy);
-    rod_check = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.check);
-    std::optional<objectives::SolidSegmentCheck> check;
-    if (config.solid_check_segment > 0) check = check_in_3d(config, run.optimum_x, *rod_check, checkpoint);
-    std::optional<objectives::CellRodEvaluation> verification;
-    if (config.verify_on_cells) verification = verify_on_cells(config, run.optimum_x, raw, ref_strain, checkpoint, cells, t0);
-    run.rounds.push_back({purpose, correction, run.optimum_x, run.optimum, run.result.feasible, check, verification, raw});
-    run.answer_round = run.rounds.size() - 1;
-    if (config.verify_on_cells) {
-      if (!verification || !verification->ok()) {
-        run.rounds_stop_reason = "the verification could not measure the last design";
-        std::cout << "no further round: " << run.rounds_stop_reason << "\n";
-        break;
-      }
-      learn(run.optimum_x, verification->measures, raw);
-      x0 = best_verified(config, run, ref_strain, x0);
-      if (meets_every_requirement(config, verification->measures, ref_strain)) {
-        // Trust-region model management past feasibility: the model is now corrected at this design
-        // too, and the next search looks for a better one about the best verified design.
-        if (improvements == config.improvement_rounds) {
-          run.rounds_stop_reason = config.improvement_rounds == 0
-                                       ? "the verification meets every requirement (check.improvement_rounds is 0)"
-                                       : "the verification meets every requirement; every improvement round has run";
-          std::cout << "the verification on the cell rod meets every requirement: no further round ("
-                    << run.rounds_stop_reason << ")\n";
-          break;
-        }
-        purpose = RoundPurpose::improvement;
-        ++improvements;
-        continue;
-      }
-      if (corrections == config.solid_corrections) {
-        run.rounds_stop_reason = "the last verified design misses a requirement; every correction round has run";
-        break;
-      }
-      // The next search is corrected by every verified design, within a trust region half as wide
-      // (the linear discrepancy was not enough to hold this one), about the best verified design.
-      radius *= 0.5;
-      purpose = RoundPurpose::correction;
-      ++corrections;
-      continue;
-    }
-    if (corrections == config.solid_corrections || !check) break;
-    if (check->meets_bending() && check->holds_working_pressure()) {
-      std::cout << "the 3D check meets bending and holds the working pressure: no correction needed\n";
-      break;
-    }
-    if (!run.result.feasible) {
-      std::cout << "no correction round: the search found no design that meets every requirement of its own model\n";
-      break;
-    }
-    const SolidCorrection next = updated_correction(correction, *check, raw, config.check.working_pressure_kPa);
-    if (next.checks == correction.checks) {
-      std::cout << "no correction round: the 3D path stalled, so it measured neither bending at the working pressure "
-                   "nor a limit point\n";
-      break;
-    }
-    correction = next;
-    x0 = run.optimum_x;
-    purpose = RoundPurpose::correction;
-    ++corrections;
-  }
-
-  // The answer is the best verified design (the first that meets every requirement ends the loop; with
-  // none, the least violating), not merely the last.
-  if (config.verify_on_cells && !run.rounds.empty()) {
-    run.answer_round = best_round(config, run, ref_strain);
-    if (run.answer_round + 1 != run.rounds.size()) {
-      const SearchRound& a = run.rounds[run.answer_round];
-      std::cout << "the answer is round " << run.answer_round << "'s design, the best verified one (every requirement "
-                   "met first, then the objective; else the least violation)\n";
-      run.optimum_x = a.optimum_x;
-      run.optimum = a.optimum;
-      run.optimum_uncorrected = a.optimum_uncorrected;
-      rod_check = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.check);
-    }
-  }
-
-  // Re-check the final optimum at the higher fidelity and report the difference.
-  run.check_reference_strain = ref_strain;
-  run.check = corrected(*rod_check, correction);
-  print_measures("optimum re-checked by the search model (" + std::to_string(config.check.rod_nodes_per_segment) +
-                     " rod nodes per segment, " + std::to_string(config.check.pressure_steps) + " pressure steps" +
-                     (correction.checks ? ", corrected" : "") +
-                     (config.verify_on_cells ? "; uncorrected: the rod's discretisation, not the verdict" : "") + ")",
-                 run.check);
-  const ConstraintValues checked = constraints_of(config, run.check, run.check_reference_strain);
-  print_constraints(checked);
-  std::cout << "fidelity difference: mass " << fixed(100 * (run.check.mass_kg / run.optimum.mass_kg - 1), 2)
-            << " %, payload " << fixed(100 * (run.check.payload_kg / run.optimum.payload_kg - 1), 2) << " %, min bending "
-            << fixed(run.check.min_bending_deg - run.optimum.min_bending_deg, 2) << " deg, burst utilisation "
-            << fixed(run.check.burst_utilisation - run.optimum.burst_utilisation, 3) << "; search margin "
-            << fixed(100 * config.search_margin, 1) << " %\n";
+  run_rounds(config, run, state, ref_strain, log, checkpoint, cells, t0);
+  choose_answer(config, run, state, ref_strain);
+  recheck_answer(config, run, state, ref_strain);
   peaks_one_level_finer(config, run, ref_strain);
   print_rounds(config, run, ref_strain);
 
