@@ -9,6 +9,7 @@
 #include "fem/scenes/reduced_scenes.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
 #include "fem/scenes/tca_cell_rod.hpp"
+#include "studies/progress_bar.hpp"
 
 namespace softarm::engine {
 namespace {
@@ -88,8 +89,9 @@ int simulate_reduced_spl(const fem::SceneConfig& config) {
 int simulate_cell_rod_tca(const fem::SceneConfig& config) {
   const auto& dir = config.output.directory;
   const fem::TcaSceneSpec& spec = config.tca;
+  std::cout << "cell rod: the ring-pitch cells and end cells along the pressure ramp, side by side\n" << std::flush;
+  const fem::CellRodTcaResult r = fem::run_cell_rod_tca(spec, studies::task_progress(std::cout, "cells"));
   std::cout << "cell rod: ring-pitch cells about rings";
-  const fem::CellRodTcaResult r = fem::run_cell_rod_tca(spec);
   for (int ring : r.rings) std::cout << " " << ring;
   std::cout << " (" << r.cell_dofs << " dofs each";
   if (r.end_rings > 0)
@@ -138,7 +140,8 @@ int simulate_cell_rod_tca(const fem::SceneConfig& config) {
 int simulate_cell_rod_spl(const fem::SceneConfig& config) {
   const auto& dir = config.output.directory;
   std::cout << "cell rod: ring-pitch cells of each segment about its first, middle and last rings\n";
-  const fem::SplCells c = fem::spl_cells(config.spl);
+  std::cout << std::flush;
+  const fem::SplCells c = fem::spl_cells(config.spl, 16, {}, true, {}, studies::task_progress(std::cout, "cells"));
   const fem::SplCellRodResult r = fem::pose_spl_cell_rod(c, config.spl.output_levels);
   nlohmann::json cells = nlohmann::json::array();
   for (int n = 0; n < 3; ++n) {

@@ -224,7 +224,7 @@ void payload_on_cells(const fem::SplCells& cells, const EvaluationSettings& s, A
 
 CellRodEvaluation evaluate_arm_on_cells(const ArmCandidate& c, const EvaluationSettings& s, int cell_levels,
                                         const std::function<void(fem::TcaSceneSpec&)>& adjust,
-                                        const fem::TaskSpread& spread) {
+                                        const fem::TaskSpread& spread, const fem::TaskProgress& progress) {
   const auto t0 = Clock::now();
   for (const auto& seg : c.design.segments) fem::validate(seg);
   CellRodEvaluation out;
@@ -235,7 +235,7 @@ CellRodEvaluation evaluate_arm_on_cells(const ArmCandidate& c, const EvaluationS
   m.length_mm = arm.length_mm();
 
   // Planar loads in every segment's mirror plane: no torsion to measure.
-  const fem::SplCells cells = fem::spl_cells(arm_cell_scene(c, s), cell_levels, adjust, false, spread);
+  const fem::SplCells cells = fem::spl_cells(arm_cell_scene(c, s), cell_levels, adjust, false, spread, progress);
   out.cell_seconds = cells.seconds;
   out.cells = cells.cells;
   out.end_cells = cells.end_cells;

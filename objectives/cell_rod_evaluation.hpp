@@ -29,6 +29,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "fem/core/parallel.hpp"
 #include "fem/scenes/pressure_path.hpp"
 #include "fem/scenes/spl_cell_job.hpp"
 #include "fem/scenes/spl_scene.hpp"
@@ -62,7 +63,8 @@ struct CellRodEvaluation {
 CellRodEvaluation evaluate_arm_on_cells(const ArmCandidate& candidate, const EvaluationSettings& settings,
                                         int cell_levels = 16,
                                         const std::function<void(fem::TcaSceneSpec&)>& adjust = {},
-                                        const fem::TaskSpread& spread = {});
+                                        const fem::TaskSpread& spread = {},
+                                        const fem::TaskProgress& progress = {});
 
 /// The arm's 3D scene whose cells the verification runs: chambers 2 and 3 of every segment at the
 /// working pressure, hanging (gravity along −z), the solver settings of the design's 3D checks.

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 namespace softarm::studies {
@@ -18,10 +19,11 @@ std::string duration_text(double s) {
 }
 }  // namespace
 
-ProgressBar::ProgressBar(std::ostream& out, std::string name, int total, int already_done)
+ProgressBar::ProgressBar(std::ostream& out, std::string name, int total, int already_done,
+                         std::chrono::steady_clock::time_point start)
     : out_(out), name_(std::move(name)), total_(total), done_(already_done),
       terminal_(&out == &std::cerr ? ::isatty(2) : &out == &std::cout ? ::isatty(1) : false),
-      start_(std::chrono::steady_clock::now()) {
+      start_(start) {
   if (already_done > 0) out_ << name_ << ": " << already_done << " of " << total_ << " points already in the results file\n";
   draw("");
 }
@@ -54,6 +56,17 @@ void ProgressBar::draw(const std::string& what) {
 void ProgressBar::finish() {
   if (terminal_) out_ << "\n";
   out_ << std::flush;
+}
+
+fem::TaskProgress task_progress(std::ostream& out, std::string name) {
+  // Made at the first call, when the total is known, timed from now, when the tasks start;
+  // fem::parallel_tasks calls one at a time.
+  auto bar = std::make_shared<std::unique_ptr<ProgressBar>>();
+  return [&out, name = std::move(name), bar, start = std::chrono::steady_clock::now()](int done, int total) {
+    if (!*bar) *bar = std::make_unique<ProgressBar>(out, name, total, 0, start);
+    (*bar)->advance(false, "");
+    if (done == total) (*bar)->finish();
+  };
 }
 
 }  // namespace softarm::studies

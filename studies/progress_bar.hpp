@@ -7,11 +7,15 @@
 #include <iosfwd>
 #include <string>
 
+#include "fem/core/parallel.hpp"
+
 namespace softarm::studies {
 
 class ProgressBar {
  public:
-  ProgressBar(std::ostream& out, std::string name, int total, int already_done);
+  /// `start`: when the work began (the elapsed time and the ETA count from it).
+  ProgressBar(std::ostream& out, std::string name, int total, int already_done,
+              std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now());
   /// One more point finished (`failed`: not status ok); `what`: a short note for line mode.
   void advance(bool failed, const std::string& what);
   void finish();
@@ -24,5 +28,9 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_;
   void draw(const std::string& what);
 };
+
+/// A fem::TaskProgress that draws a ProgressBar named `name` on `out` (e.g. a run's cells): one
+/// line per finished task in a log, one line redrawn in place on a terminal.
+fem::TaskProgress task_progress(std::ostream& out, std::string name);
 
 }  // namespace softarm::studies

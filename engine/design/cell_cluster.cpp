@@ -24,9 +24,10 @@ CellCluster::~CellCluster() {
 bool CellCluster::root() const { return cluster().root(); }
 int CellCluster::size() const { return cluster().size(); }
 
-objectives::CellRodEvaluation CellCluster::evaluate(const DesignConfig& config, const std::vector<double>& x) const {
+objectives::CellRodEvaluation CellCluster::evaluate(const DesignConfig& config, const std::vector<double>& x,
+                                                    const fem::TaskProgress& progress) const {
   if (size() > 1) cluster().broadcast_idle(json(x).dump());  // exact: shortest round-trip doubles
-  return evaluate_here(config, x);
+  return evaluate_here(config, x, progress);
 }
 
 void CellCluster::finish() {
@@ -47,14 +48,15 @@ void CellCluster::serve(const DesignConfig& config) const {
   }
 }
 
-objectives::CellRodEvaluation CellCluster::evaluate_here(const DesignConfig& config,
-                                                         const std::vector<double>& x) const {
+objectives::CellRodEvaluation CellCluster::evaluate_here(const DesignConfig& config, const std::vector<double>& x,
+                                                         const fem::TaskProgress& progress) const {
   const int layers = config.cell_layers_level;
   const auto adjust = [layers](fem::TcaSceneSpec& s) {
     if (layers > 0) s.axial_level = layers;
   };
+  // Over several ranks the cells are spread (spread()) and progress is not counted.
   return objectives::evaluate_arm_on_cells(make_candidate(config, x), config.check, config.cell_levels, adjust,
-                                           spread());
+                                           spread(), progress);
 }
 
 // Rank r runs tasks r, r + N, r + 2N, … on its threads; each task's text (or its error) goes to every

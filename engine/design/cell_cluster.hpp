@@ -26,14 +26,17 @@ class CellCluster {
 
   /// Rank 0: the accurate model's measures of design vector `x` (objectives/cell_rod_evaluation.hpp),
   /// its cells spread over every rank. Throws as evaluate_arm_on_cells does.
-  objectives::CellRodEvaluation evaluate(const DesignConfig& config, const std::vector<double>& x) const;
+  /// `progress` is told as each of rank 0's cells ends.
+  objectives::CellRodEvaluation evaluate(const DesignConfig& config, const std::vector<double>& x,
+                                         const fem::TaskProgress& progress = {}) const;
   /// Rank 0: no more verifications; the other ranks return from serve(). Once; the destructor calls it.
   void finish();
   /// Ranks > 0: take part in every verification rank 0 runs, until it finishes.
   void serve(const DesignConfig& config) const;
 
  private:
-  objectives::CellRodEvaluation evaluate_here(const DesignConfig& config, const std::vector<double>& x) const;
+  objectives::CellRodEvaluation evaluate_here(const DesignConfig& config, const std::vector<double>& x,
+                                              const fem::TaskProgress& progress = {}) const;
   fem::TaskSpread spread() const;
   bool finished_ = false;
 };

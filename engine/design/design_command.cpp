@@ -15,6 +15,7 @@
 #include "fem/core/json_reader.hpp"
 #include "objectives/cell_rod_evaluation.hpp"
 #include "objectives/fit_range.hpp"
+#include "studies/progress_bar.hpp"
 
 namespace softarm::engine {
 namespace {
@@ -158,7 +159,7 @@ std::optional<objectives::CellRodEvaluation> verify_on_cells(const DesignConfig&
               << fixed(std::chrono::duration<double>(Clock::now() - t0).count(), 0) << " s into the run) ...\n"
               << std::flush;
     try {
-      v = cells.evaluate(config, x);
+      v = cells.evaluate(config, x, studies::task_progress(std::cout, "  cells"));
     } catch (const std::exception& e) {
       std::cout << "verification could not run: " << e.what() << "\n";
       return std::nullopt;

@@ -40,32 +40,37 @@ void parallel_for(int n, const std::function<void(int, int, int)>& body) {
   for (auto& th : pool) th.join();
 }
 
-void parallel_tasks(int n, const std::function<void(int)>& task) {
-  const int threads = std::min(g_threads, n);
-  if (threads <= 1) {
-    for (int i = 0; i < n; ++i) task(i);
-    return;
-  }
-  const int saved = g_threads;
-  g_threads = 1;
+void parallel_tasks(int n, const std::function<void(int)>& task, const TaskProgress& progress) {
   std::atomic<int> next{0};
   std::exception_ptr failure;
-  std::mutex failure_mutex;
+  int done = 0;
+  std::mutex mutex;  // the first failure, the count of ended tasks and the calls to `progress`
   const auto worker = [&] {
     for (int i = next++; i < n; i = next++) {
       try {
         task(i);
       } catch (...) {
-        const std::lock_guard<std::mutex> lock(failure_mutex);
+        const std::lock_guard<std::mutex> lock(mutex);
         if (!failure) failure = std::current_exception();
+      }
+      if (progress) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        progress(++done, n);
       }
     }
   };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& th : pool) th.join();
-  g_threads = saved;
+  const int threads = std::min(g_threads, n);
+  if (threads <= 1) {
+    worker();  // on this thread, with its thread count (one task may use every thread)
+  } else {
+    const int saved = g_threads;
+    g_threads = 1;
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+    worker();
+    for (auto& th : pool) th.join();
+    g_threads = saved;
+  }
   if (failure) std::rethrow_exception(failure);
 }
 

@@ -43,7 +43,7 @@ EndFaceSupport spl_end_support(int n, TcaEnd end) {
 }
 
 SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::function<void(TcaSceneSpec&)>& adjust,
-                   bool with_torsion, const TaskSpread& spread) {
+                   bool with_torsion, const TaskSpread& spread, const TaskProgress& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   SplCells out;
   out.rod.gravity_m_s2 = spec.gravity_m_s2;
@@ -110,7 +110,7 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::functio
     const std::vector<std::string> texts = spread(job_count, [&](int i) { return to_text(run_job(i)); });
     for (int i = 0; i < job_count; ++i) results[i] = cell_job_from_text(texts.at(i));
   } else {
-    parallel_tasks(job_count, [&](int i) { results[i] = run_job(i); });
+    parallel_tasks(job_count, [&](int i) { results[i] = run_job(i); }, progress);
   }
   const auto end_result = [&](std::size_t i) -> const CellJobResult& { return results[i]; };
   const auto cell_result = [&](std::size_t i) -> const CellJobResult& { return results[end_count + i]; };

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "fem/core/parallel.hpp"
 #include "fem/reduced/spatial_cell_rod.hpp"
 #include "fem/scenes/spl_cell_job.hpp"
 #include "fem/scenes/spl_scene.hpp"
@@ -62,7 +63,7 @@ struct SplCells {
 /// (spl_cell_job.hpp: over MPI ranks, each with the same arguments), else this process' threads do.
 SplCells spl_cells(const SplSceneSpec& spec, int cell_levels = 16,
                    const std::function<void(TcaSceneSpec&)>& adjust = {}, bool with_torsion = true,
-                   const TaskSpread& spread = {});
+                   const TaskSpread& spread = {}, const TaskProgress& progress = {});
 
 struct SplCellRodResult {
   std::vector<SplState> curve;        // rest (under gravity), then every output level the rod reached

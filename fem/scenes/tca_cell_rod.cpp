@@ -64,7 +64,7 @@ bool tca_needs_spatial_rod(const TcaSceneSpec& spec) {
   return !choose_tca_model(mirror).half;
 }
 
-TcaRodCells run_tca_rod_cells(const TcaSceneSpec& spec, bool with_torsion) {
+TcaRodCells run_tca_rod_cells(const TcaSceneSpec& spec, bool with_torsion, const TaskProgress& progress) {
   TcaRodCells out;
   const int n = spec.design.actuator.ring_count;
   out.with_torsion = with_torsion;
@@ -89,14 +89,14 @@ TcaRodCells run_tca_rod_cells(const TcaSceneSpec& spec, bool with_torsion) {
     i -= end_count;
     out.cells[i] = run_tca_cell(spec, out.rings[i]);
     if (with_torsion) out.torsion[i] = cell_torsion_stiffness(spec, out.rings[i]);
-  });
+  }, progress);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_cells).count();
   return out;
 }
 
-CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec) {
+CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec, const TaskProgress& progress) {
   if (spec.design.actuator.ring_count < 1) return pose_cell_rod_tca(spec, {});
-  return pose_cell_rod_tca(spec, run_tca_rod_cells(spec, tca_needs_spatial_rod(spec)));
+  return pose_cell_rod_tca(spec, run_tca_rod_cells(spec, tca_needs_spatial_rod(spec), progress));
 }
 
 CellRodTcaResult pose_cell_rod_tca(const TcaSceneSpec& spec, const TcaRodCells& pieces) {

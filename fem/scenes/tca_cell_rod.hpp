@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "fem/core/parallel.hpp"
 #include "fem/scenes/tca_cell.hpp"
 
 namespace softarm::fem {
@@ -39,7 +40,7 @@ struct CellRodTcaResult {
   int end_cell_dofs = 0;                       // of one end cell (0: none)
   double cell_seconds = 0, rod_seconds = 0;
 };
-CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec);
+CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec, const TaskProgress& progress = {});
 
 /// Whether spec's loads leave every mirror plane through the axis (the spatial cell rod's case).
 bool tca_needs_spatial_rod(const TcaSceneSpec& spec);
@@ -59,7 +60,8 @@ struct TcaRodCells {
   std::vector<double> end_twist;  // twist compliance of each bonded end at rest (with_torsion; 0: free end)
   double seconds = 0;             // the cells side by side, one thread each
 };
-TcaRodCells run_tca_rod_cells(const TcaSceneSpec& spec, bool with_torsion);
+/// `progress` is told as each cell ends (parallel_tasks).
+TcaRodCells run_tca_rod_cells(const TcaSceneSpec& spec, bool with_torsion, const TaskProgress& progress = {});
 /// The cell rod of spec's loads on cells run for spec's design, mesh and pressures (what
 /// run_cell_rod_tca does after running them). Throws std::logic_error for loads out of one plane on
 /// cells without torsion.
