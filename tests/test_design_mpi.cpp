@@ -18,6 +18,7 @@
 
 #include "fem/core/json_reader.hpp"
 #include "support/external_tool.hpp"
+#include "support/time_limit.hpp"
 #include "support/text_file.hpp"
 
 namespace fs = std::filesystem;
@@ -65,7 +66,7 @@ TEST_CASE("two MPI ranks give the serial design, its cells spread over them", "[
   const std::string args = "design " + (dir / "requirements.json").string() + " --max-evaluations 1 --threads 1 -o ";
 
   REQUIRE(run("", args + (dir / "serial").string(), dir / "serial.log") == 0);
-  const int mpi = run("timeout -k 5 900 mpirun --allow-run-as-root --oversubscribe -np 2 ", args + (dir / "mpi").string(),
+  const int mpi = run(softarm::test::mpirun_two_ranks(900), args + (dir / "mpi").string(),
                       dir / "mpi.log");
   const std::string mpi_log = read_text(dir / "mpi.log");
   INFO("mpirun output:\n" << mpi_log);

@@ -33,6 +33,7 @@
 #include "studies/study_points.hpp"
 #include "studies/study_spec.hpp"
 #include "support/browser_render.hpp"
+#include "support/time_limit.hpp"
 #include "support/external_tool.hpp"
 #include "support/text_file.hpp"
 
@@ -230,7 +231,7 @@ pid_t start_softarm(const std::vector<std::string>& args, const fs::path& log) {
   return pid;
 }
 
-const std::string kMpirun = "timeout -k 5 120 mpirun --allow-run-as-root --oversubscribe -np 2 ";
+const std::string kMpirun = softarm::test::mpirun_two_ranks(120);
 
 }  // namespace
 
