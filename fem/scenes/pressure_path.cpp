@@ -278,6 +278,7 @@ void name_the_stop(const StopContext& c, const Vector& x, PressurePathResult& ou
                     mode_note + volume_note;
   }
 }
+
 /// The solver's running totals into the result: taken after pressure control and again after
 /// volume control, which uses the same solver.
 void take_solver_costs(const LinearSolver& solver, PressurePathResult& out) {
