@@ -141,7 +141,7 @@ int simulate_cell_rod_spl(const fem::SceneConfig& config) {
   const auto& dir = config.output.directory;
   std::cout << "cell rod: ring-pitch cells of each segment about its first, middle and last rings\n";
   std::cout << std::flush;
-  const fem::SplCells c = fem::spl_cells(config.spl, 16, {}, true, {}, studies::task_progress(std::cout, "cells"));
+  const fem::SplCells c = fem::spl_cells(config.spl, fem::kDefaultCellLevels, {}, true, {}, studies::task_progress(std::cout, "cells"));
   const fem::SplCellRodResult r = fem::pose_spl_cell_rod(c, config.spl.output_levels);
   nlohmann::json cells = nlohmann::json::array();
   for (int n = 0; n < 3; ++n) {

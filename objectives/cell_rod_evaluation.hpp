@@ -32,6 +32,7 @@
 #include "fem/core/parallel.hpp"
 #include "fem/scenes/pressure_path.hpp"
 #include "fem/scenes/spl_cell_job.hpp"
+#include "fem/scenes/spl_cell_rod.hpp"
 #include "fem/scenes/spl_scene.hpp"
 #include "objectives/arm_evaluation.hpp"
 
@@ -61,7 +62,7 @@ struct CellRodEvaluation {
 /// every one calling this with the same arguments; fem/scenes/spl_cell_job.hpp), else this process'
 /// threads do: the same answer either way. Throws fem::InputError for a design that cannot be built.
 CellRodEvaluation evaluate_arm_on_cells(const ArmCandidate& candidate, const EvaluationSettings& settings,
-                                        int cell_levels = 16,
+                                        int cell_levels = fem::kDefaultCellLevels,
                                         const std::function<void(fem::TcaSceneSpec&)>& adjust = {},
                                         const fem::TaskSpread& spread = {},
                                         const fem::TaskProgress& progress = {});

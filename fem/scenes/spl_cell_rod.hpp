@@ -55,13 +55,16 @@ struct SplCells {
   std::string notes;                           // the cells that stopped short, and why
   std::string failure;                         // why there are no cells (a segment without rings)
 };
+/// The load levels a segment's cells report at unless told otherwise: every 1/16 of the ramp.
+inline constexpr int kDefaultCellLevels = 16;
+
 /// `cell_levels`: the load levels at which the cells report (every 1/cell_levels of the ramp);
 /// `adjust`, if given, changes each segment's cell scene after spl_segment_cell_scene (a benchmark's
 /// other mesh or end rings). Without `with_torsion` the cells' GJ and the bonded ends' twist are not
 /// measured and the rod is rigid in torsion: exact for loads in one mirror plane of every segment (a
 /// planar pose twists nothing), and about a fifth of the cost saved. `spread`, if given, runs the cells
 /// (spl_cell_job.hpp: over MPI ranks, each with the same arguments), else this process' threads do.
-SplCells spl_cells(const SplSceneSpec& spec, int cell_levels = 16,
+SplCells spl_cells(const SplSceneSpec& spec, int cell_levels = kDefaultCellLevels,
                    const std::function<void(TcaSceneSpec&)>& adjust = {}, bool with_torsion = true,
                    const TaskSpread& spread = {}, const TaskProgress& progress = {});
 
@@ -79,6 +82,6 @@ struct SplCellRodResult {
 SplCellRodResult pose_spl_cell_rod(const SplCells& cells, const std::vector<double>& levels);
 
 /// spl_cells, then the pose at the scene's output levels.
-SplCellRodResult run_cell_rod_spl(const SplSceneSpec& spec, int cell_levels = 16);
+SplCellRodResult run_cell_rod_spl(const SplSceneSpec& spec, int cell_levels = kDefaultCellLevels);
 
 }  // namespace softarm::fem
