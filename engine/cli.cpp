@@ -7,6 +7,7 @@
 #include <iomanip>
 #include <iostream>
 
+#include "engine/cli_checks.hpp"
 #include "engine/design/design_command.hpp"
 #include "fem/core/number_text.hpp"
 #include "fem/core/thesis_values.hpp"
@@ -212,27 +213,6 @@ void print_schema(const std::string& scene) {
   if (scene == "spl") probe["load"] = {{"chamber_pressures_kPa", {0, 345, 345, 0, 86, 345, 0, 0, 59}}};
   fem::read_scene_config(probe);
   print_fields("scene \"" + scene + "\" config keys");
-}
-
-/// A number option that must be finite and within [lo, hi] (CLI::Range lets NaN through: every
-/// comparison with it is false).
-CLI::Validator finite_in(double lo, double hi, const std::string& unit) {
-  return CLI::Validator(
-      [lo, hi, unit](std::string& text) -> std::string {
-        double v = 0;
-        try {
-          std::size_t used = 0;
-          v = std::stod(text, &used);
-          if (used != text.size()) return "'" + text + "' is not a number";
-        } catch (const std::exception&) {
-          return "'" + text + "' is not a number";
-        }
-        if (!std::isfinite(v) || v < lo || v > hi)
-          return "value " + text + " out of range; valid: a finite number in [" + fem::number_text(lo) + ", " +
-                 fem::number_text(hi) + "] " + unit;
-        return "";
-      },
-      "FINITE[" + fem::number_text(lo) + ", " + fem::number_text(hi) + "]");
 }
 
 /// The name in `names` nearest to `given` by edit distance (insertions, deletions, substitutions).
