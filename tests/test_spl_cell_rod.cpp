@@ -13,6 +13,7 @@
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
 #include "fem/scenes/tca_cell_rod.hpp"
+#include "support/short_spl.hpp"
 
 using namespace softarm::fem;
 using nlohmann::json;
@@ -73,23 +74,6 @@ TEST_CASE("The SPL cell rod bends a lone distal segment as the 3CA cell rod does
 }
 
 namespace {
-/// A short SPL: three 5-ring segments (26.7 mm, the thesis' taper and sections), 10 mm connectors, no
-/// gravity; chambers 2 and 3 at 150 kPa, 5 and 6 at 120, 7 at 100: every segment bends in the x-z
-/// plane (a half model). Its 3D model on Hex20/P1 at 27 points, level 1 with level 1's layers (30,174
-/// dofs, ~25 s); the cells on the same mesh.
-SplSceneSpec short_spl() {
-  json j = load_json_file(std::string(SOFTARM_SOURCE_DIR) + "/configs/convergence/spl_thesis_pose_hex20.json");
-  j.erase("description");
-  j["geometry"]["length_mm"] = 5 * 160.0 / 30;
-  j["geometry"].erase("ring_count_normalised");
-  j["geometry"]["ring_count"] = 5;
-  j["geometry"]["connector_thickness_mm"] = 10;
-  j["mesh"] = {{"level", 1}, {"axial_level", 1}, {"element_order", 2}, {"serendipity", true}};
-  j["load"] = {{"chamber_pressures_kPa", {0, 150, 150, 0, 120, 120, 100, 0, 0}}, {"gravity_m_s2", {0, 0, 0}}, {"output_count", 2}};
-  j["output"] = {{"vtu", false}};
-  return read_scene_config(j).spl;
-}
-
 /// Segment n's (1..3) own bend: the angle of its bottom joint's rotation against its top joint's.
 double segment_bend_deg(const std::vector<SplJoint>& joints, int n) {
   const Eigen::Matrix3d relative = joints[2 * n - 2].pose.rotation.transpose() * joints[2 * n - 1].pose.rotation;
@@ -102,7 +86,7 @@ TEST_CASE("End cells bonded to the connectors bend a short SPL as its 3D model d
   // (−1.6 %, −1.7 %), with rigid caps 4.85° and 4.79° (−16 %, −10 %); the tip 0.3 mm off (2.5 % of its
   // 14 mm travel) against 1.7 mm (12.8 %). Segment 3's own bend is not compared: the tip's Kabsch
   // frame tilts with its cap, which chamber 7 alone bulges on one side (3D 7.2°, rod 3.9°).
-  const SplSceneSpec spec = short_spl();
+  const SplSceneSpec spec = softarm::test::short_spl();
   const SplResult solid = run_spl_scene(spec);
   REQUIRE(solid.path.outcome == PathOutcome::completed);
   REQUIRE(solid.model.half);
