@@ -24,6 +24,7 @@
 #include "fem/scenes/scene_config.hpp"
 #include "engine/spl_report.hpp"
 #include "engine/tca_report.hpp"
+#include "engine/workspace/workspace_command.hpp"
 #include "fem/scenes/tca_export.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/core/json_reader.hpp"
@@ -299,6 +300,8 @@ int run_cli(int argc, char** argv) {
   std::string fidelity_report;
   fidelity->add_option("--report", fidelity_report, "also write an HTML page with a Pareto plot per scene");
   add_material_command(app);
+  WorkspaceOptions workspace_options;
+  CLI::App* workspace = add_workspace_command(app, workspace_options);
 
   // Bare `softarm`: the help, not an error. An unknown command: the nearest known one.
   if (argc == 1) {
@@ -329,6 +332,7 @@ int run_cli(int argc, char** argv) {
     if (*sim) return simulate(scene_file, output_dir, mesh_level, element_order, fidelity_choice, simulate_fresh);
     if (*design) return run_design(design_file, design_overrides);
     if (*study) return run_study_command(study_options);
+    if (*workspace) return run_workspace(workspace_options);
     if (*fidelity) {
       print_fidelity_ladders();
       if (!fidelity_report.empty()) write_fidelity_report(fidelity_report);

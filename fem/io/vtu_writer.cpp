@@ -204,6 +204,33 @@ std::string polyline_document(const std::vector<std::vector<Eigen::Vector3d>>& l
   return out.close_piece();
 }
 
+/// Points: one VTK_VERTEX cell per point; `fields` as point data.
+std::string point_cloud_document(const std::vector<Eigen::Vector3d>& cloud, const std::vector<NamedField>& fields) {
+  for (const NamedField& f : fields)
+    if (f.name.empty() || f.components < 1 || f.values.size() != cloud.size() * static_cast<std::size_t>(f.components))
+      throw std::invalid_argument("write_point_cloud_vtu: field '" + f.name + "' needs a name and " +
+                                  std::to_string(f.components) + " values per point");
+  std::vector<double> points;
+  std::vector<long long> connectivity, offsets;
+  for (const Eigen::Vector3d& p : cloud) {
+    connectivity.push_back(static_cast<long long>(points.size() / 3));
+    points.insert(points.end(), {p.x(), p.y(), p.z()});
+    offsets.push_back(static_cast<long long>(connectivity.size()));
+  }
+  constexpr int vtk_vertex = 1;
+  VtuText out;
+  out.open_piece(cloud.size(), cloud.size());
+  out.line("      <PointData>");
+  for (const NamedField& f : fields) {
+    out.open_array("Float64", f.name, f.components);
+    out.tuples(f.values, f.components);
+    out.close_array();
+  }
+  out.line("      </PointData>");
+  out.points_and_cells(points, connectivity, 1, offsets, std::vector<long long>(cloud.size(), vtk_vertex));
+  return out.close_piece();
+}
+
 /// Writes `text` to `path` through a temporary file in the same folder and a rename, so that a
 /// reader never sees half a file; missing parent folders are created.
 void write_atomically(const std::string& path, const std::string& text, const char* who) {
@@ -240,6 +267,11 @@ void write_vtu(const std::string& path, const Mesh& mesh, const Eigen::MatrixXd&
 void write_polyline_vtu(const std::string& path, const std::vector<std::vector<Eigen::Vector3d>>& lines,
                         const NamedField& per_line) {
   write_atomically(path, polyline_document(lines, per_line), "write_polyline_vtu");
+}
+
+void write_point_cloud_vtu(const std::string& path, const std::vector<Eigen::Vector3d>& points,
+                           const std::vector<NamedField>& point_fields) {
+  write_atomically(path, point_cloud_document(points, point_fields), "write_point_cloud_vtu");
 }
 
 }  // namespace softarm::fem

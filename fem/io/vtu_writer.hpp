@@ -37,4 +37,10 @@ void write_vtu(const std::string& path, const Mesh& mesh, const Eigen::MatrixXd&
 void write_polyline_vtu(const std::string& path, const std::vector<std::vector<Eigen::Vector3d>>& lines,
                         const NamedField& per_line);
 
+/// A cloud of points (mm), each its own VTK_VERTEX cell so that ParaView draws it, with `point_fields`
+/// (one tuple per point) as point data: a workspace's tips with their pressures. Written as write_vtu
+/// writes; throws std::invalid_argument for a field of the wrong size or without a name.
+void write_point_cloud_vtu(const std::string& path, const std::vector<Eigen::Vector3d>& points,
+                           const std::vector<NamedField>& point_fields);
+
 }  // namespace softarm::fem

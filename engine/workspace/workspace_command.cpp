@@ -1,0 +1,140 @@
+#include "engine/workspace/workspace_command.hpp"
+
+#include <iomanip>
+#include <iostream>
+
+#include "engine/cli_checks.hpp"
+#include "engine/report/output_files.hpp"
+#include "engine/workspace/workspace_report.hpp"
+#include "fem/core/input_error.hpp"
+#include "fem/core/thesis_values.hpp"
+#include "fem/io/vtu_writer.hpp"
+#include "fem/scenes/scene_config.hpp"
+#include "studies/progress_bar.hpp"
+
+namespace softarm::engine {
+namespace {
+
+void write_points_csv(const std::string& dir, const studies::WorkspaceResult& w) {
+  std::ofstream csv = open_output_file(dir, "points.csv");
+  csv << std::setprecision(10);
+  for (int k = 1; k <= 9; ++k) csv << "p" << k << "_kPa,";
+  csv << "reached,tip_x_mm,tip_y_mm,tip_z_mm,axis_x,axis_y,axis_z,tip_tilt_deg,pressure_sum_kPa,why\n";
+  for (const studies::WorkspacePoint& p : w.points) {
+    for (double x : p.pressure_kPa) csv << x << ",";
+    csv << (p.ok ? 1 : 0);
+    if (p.ok)
+      csv << "," << p.tip_mm.x() << "," << p.tip_mm.y() << "," << p.tip_mm.z() << "," << p.tip_axis.x() << ","
+          << p.tip_axis.y() << "," << p.tip_axis.z() << "," << p.tip_tilt_deg;
+    else
+      csv << ",,,,,,,";
+    csv << "," << p.pressure_sum_kPa << "," << csv_text(p.why) << "\n";
+  }
+}
+
+/// The reached tips, with each chamber's pressure, the pressure sum, the tilt and the axis as fields.
+void write_points_vtu(const std::string& dir, const studies::WorkspaceResult& w) {
+  std::vector<Eigen::Vector3d> tips;
+  std::vector<fem::NamedField> fields;
+  for (int k = 1; k <= 9; ++k) fields.push_back({"p" + std::to_string(k) + "_kPa", 1, {}});
+  fields.push_back({"pressure_sum_kPa", 1, {}});
+  fields.push_back({"tip_tilt_deg", 1, {}});
+  fields.push_back({"tip_axis", 3, {}});
+  for (const studies::WorkspacePoint& p : w.points) {
+    if (!p.ok) continue;
+    tips.push_back(p.tip_mm);
+    for (int k = 0; k < 9; ++k) fields[k].values.push_back(p.pressure_kPa[k]);
+    fields[9].values.push_back(p.pressure_sum_kPa);
+    fields[10].values.push_back(p.tip_tilt_deg);
+    fields[11].values.insert(fields[11].values.end(), {p.tip_axis.x(), p.tip_axis.y(), p.tip_axis.z()});
+  }
+  fem::write_point_cloud_vtu(dir + "/workspace.vtu", tips, fields);
+}
+
+nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json summary_json(const WorkspaceOptions& o, const fem::SplPressureCells& cells,
+                            const studies::WorkspaceResult& w) {
+  nlohmann::json j = {{"scene", o.scene},
+                      {"max_pressure_kPa", o.max_pressure_kPa},
+                      {"direction_divisions", o.divisions},
+                      {"rays", cells.directions.size()},
+                      {"cells_seconds", cells.seconds},
+                      {"samples", w.points.size()},
+                      {"reached", w.reached},
+                      {"poses_seconds", w.pose_seconds},
+                      {"poses_per_second", w.poses_per_second},
+                      {"voxel_mm", o.voxel_mm},
+                      {"occupied_volume_mm3", w.occupied_volume_mm3}};
+  if (o.payload_kg) j["payload_kg"] = *o.payload_kg;
+  if (w.reached > 0) j["extent_mm"] = {{"lower", vector_json(w.lower_mm)}, {"upper", vector_json(w.upper_mm)}};
+  if (!cells.failure.empty()) j["failure"] = cells.failure;
+  return j;
+}
+}  // namespace
+
+CLI::App* add_workspace_command(CLI::App& app, WorkspaceOptions& o) {
+  o.max_pressure_kPa = fem::thesis::kWorkingPressure_kPa;
+  CLI::App* ws = app.add_subcommand(
+      "workspace", "where the arm's tip can go: poses over all nine chamber pressures on the arm's cells (an spl scene)");
+  ws->add_option("scene", o.scene, "spl scene JSON file (its design, materials, gravity and tip mass)")->required();
+  ws->add_option("-o,--output", o.output, "output directory")->capture_default_str();
+  ws->add_option("--max-pressure-kPa", o.max_pressure_kPa, "every chamber's bound (default: the working pressure)")
+      ->check(finite_in(1, 1000, "kPa"))
+      ->capture_default_str();
+  ws->add_option("--samples", o.samples, "pressure vectors posed (the 512 corners of the pressure space first)")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  ws->add_option("--directions", o.divisions,
+                 "divisions of each segment's direction grid: (n+1)(n+2)/2 rays of cells (fem/reduced/pressure_space.hpp)")
+      ->check(CLI::Range(1, 4))
+      ->capture_default_str();
+  ws->add_option("--payload-kg", o.payload_kg, "mass at the tip (default: the scene's load.tip_mass_kg)")
+      ->check(finite_in(0, 10, "kg"));
+  ws->add_option("--voxel-mm", o.voxel_mm, "edge of the cubes the occupied volume counts")
+      ->check(finite_in(0.1, 1000, "mm"))
+      ->capture_default_str();
+  ws->add_option("--colour-by", o.colour_by, "the report's colouring")
+      ->check(CLI::IsMember({"pressure_sum", "tip_tilt"}))
+      ->capture_default_str();
+  return ws;
+}
+
+int run_workspace(const WorkspaceOptions& o) {
+  const fem::SceneConfig config = fem::load_scene_config(o.scene);
+  if (config.scene != "spl")
+    throw fem::InputError("scene", "'" + config.scene + "': the workspace is an arm's; valid: an spl scene config");
+  prepare_output_directory(o.output, "--output");
+  std::cout << "workspace: the arm's cells along " << (o.divisions + 1) * (o.divisions + 2) / 2
+            << " rays of each segment's pressure space, 0 to " << o.max_pressure_kPa << " kPa\n"
+            << std::flush;
+  const fem::SplPressureCells cells = fem::spl_pressure_cells(config.spl, o.max_pressure_kPa, o.divisions,
+                                                              fem::kDefaultCellLevels, {}, studies::task_progress(std::cout, "cells"));
+  if (!cells.failure.empty()) {
+    std::cout << "workspace: no cells: " << cells.failure << "\n";
+    write_json_file(o.output, "summary.json", summary_json(o, cells, {}));
+    return 1;
+  }
+  studies::WorkspaceSettings settings;
+  settings.samples = o.samples;
+  settings.payload_kg = o.payload_kg;
+  settings.voxel_mm = o.voxel_mm;
+  const studies::WorkspaceResult w = studies::sweep_workspace(cells, settings, studies::task_progress(std::cout, "poses"));
+  write_points_csv(o.output, w);
+  write_points_vtu(o.output, w);
+  write_json_file(o.output, "summary.json", summary_json(o, cells, w));
+  write_workspace_report(o.output + "/report.html", w, o.colour_by, o.scene);
+  std::cout << std::fixed << std::setprecision(1) << "workspace: " << w.reached << " of " << w.points.size()
+            << " poses reached (cells " << cells.seconds << " s; poses " << std::setprecision(2) << w.pose_seconds
+            << " s, " << std::setprecision(0) << w.poses_per_second << " per second)\n";
+  if (w.reached > 0)
+    std::cout << std::setprecision(1) << "  extent x " << w.lower_mm.x() << " to " << w.upper_mm.x() << ", y "
+              << w.lower_mm.y() << " to " << w.upper_mm.y() << ", z " << w.lower_mm.z() << " to " << w.upper_mm.z()
+              << " mm; occupied volume " << std::setprecision(2) << w.occupied_volume_mm3 * 1e-6 << " L at "
+              << o.voxel_mm << " mm cubes\n";
+  std::cout.unsetf(std::ios::floatfield);
+  std::cout << "written: " << o.output << "/points.csv, workspace.vtu, summary.json, report.html\n";
+  return 0;
+}
+
+}  // namespace softarm::engine

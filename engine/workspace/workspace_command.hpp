@@ -1,0 +1,32 @@
+#pragma once
+// `softarm workspace <spl scene.json>`: where the arm can put its tip. The scene's design, materials,
+// gravity (its mounting: hanging from the shoulder by default) and tip mass; the arm's cells over each
+// segment's pressure space (fem/scenes/spl_pressure_cells.hpp), then the poses at the workspace's
+// pressure samples (studies/workspace.hpp). Writes points.csv (pressures, tip, axis, per pose),
+// workspace.vtu (the tips as a point cloud with the pressures as fields), summary.json and report.html
+// (the workspace in three projections, coloured by the quantity asked for).
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+
+namespace softarm::engine {
+
+struct WorkspaceOptions {
+  std::string scene;
+  std::string output = "out/workspace";
+  double max_pressure_kPa = 0;          // set from the thesis' working pressure when registered
+  int samples = 10000;
+  int divisions = 1;                    // the direction grid's (pressure_space.hpp)
+  std::optional<double> payload_kg;
+  double voxel_mm = 10;
+  std::string colour_by = "pressure_sum";
+};
+
+/// Registers the `workspace` subcommand on `app`, its options bound to `options`; returns it.
+CLI::App* add_workspace_command(CLI::App& app, WorkspaceOptions& options);
+
+/// Runs it: 0 with the workspace written; 1 where the arm's cells could not be built (the reason printed
+/// and in summary.json). Bad configs throw fem::InputError before anything is written.
+int run_workspace(const WorkspaceOptions& options);
+
+}  // namespace softarm::engine

@@ -1,0 +1,92 @@
+#include "engine/workspace/workspace_report.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include "engine/report/html_document.hpp"
+#include "engine/report/svg_plot.hpp"
+
+namespace softarm::engine {
+namespace {
+using report::format_number;
+
+struct Projection {
+  const char* title;
+  int x, y;  // the coordinates drawn
+  const char* x_label;
+  const char* y_label;
+};
+constexpr std::array<Projection, 3> kProjections = {{
+    {"Seen from above (x-y)", 0, 1, "x (mm)", "y (mm)"},
+    {"Seen from the front (x-z)", 0, 2, "x (mm)", "z (mm, shoulder up)"},
+    {"Seen from the side (y-z)", 1, 2, "y (mm)", "z (mm, shoulder up)"},
+}};
+
+double quantity(const studies::WorkspacePoint& p, const std::string& colour_by) {
+  return colour_by == "tip_tilt" ? p.tip_tilt_deg : p.pressure_sum_kPa;
+}
+
+/// The band edges: the quantity's quartiles over the reached points.
+std::array<double, 5> band_edges(const studies::WorkspaceResult& w, const std::string& colour_by) {
+  std::vector<double> v;
+  for (const auto& p : w.points)
+    if (p.ok) v.push_back(quantity(p, colour_by));
+  std::sort(v.begin(), v.end());
+  std::array<double, 5> edges{};
+  for (int k = 0; k <= 4; ++k) edges[k] = v.empty() ? 0.0 : v[std::min(v.size() - 1, k * v.size() / 4)];
+  if (!v.empty()) edges[4] = v.back();
+  return edges;
+}
+
+std::string projection_svg(const studies::WorkspaceResult& w, const Projection& view, const std::string& colour_by,
+                           const std::array<double, 5>& edges) {
+  static const std::array<const char*, 4> colours = {"#2c7bb6", "#abd9e9", "#fdae61", "#d7191c"};
+  const std::string unit = colour_by == "tip_tilt" ? "°" : " kPa";
+  const std::string name = colour_by == "tip_tilt" ? "tip tilt " : "pressure sum ";
+  report::LinePlot plot;
+  plot.title = view.title;
+  plot.x_label = view.x_label;
+  plot.y_label = view.y_label;
+  plot.width_px = 560;
+  plot.height_px = 480;
+  for (int band = 0; band < 4; ++band) {
+    report::Series s;
+    s.label = name + format_number(edges[band], 3) + "–" + format_number(edges[band + 1], 3) + unit;
+    s.style = report::Series::Style::markers;
+    s.colour = colours[band];
+    for (const auto& p : w.points) {
+      if (!p.ok) continue;
+      const double q = quantity(p, colour_by);
+      const int in = q >= edges[3] ? 3 : q >= edges[2] ? 2 : q >= edges[1] ? 1 : 0;
+      if (in != band) continue;
+      s.x.push_back(p.tip_mm[view.x]);
+      s.y.push_back(p.tip_mm[view.y]);
+    }
+    plot.series.push_back(std::move(s));
+  }
+  return report::render_svg(plot);
+}
+}  // namespace
+
+void write_workspace_report(const std::string& path, const studies::WorkspaceResult& w, const std::string& colour_by,
+                            const std::string& scene) {
+  report::HtmlDocument doc("softarm workspace");
+  doc.heading(1, "Workspace of " + scene);
+  doc.paragraph("Each point is the tip's centre at one of " + std::to_string(w.points.size()) +
+                " pressure vectors (the corners of the pressure space, then Roberts' R9 sequence), posed on the arm's "
+                "cells; " + std::to_string(w.reached) + " reached an equilibrium within the cells' reach.");
+  const auto edges = band_edges(w, colour_by);
+  for (const Projection& view : kProjections) doc.raw_html(projection_svg(w, view, colour_by, edges));
+  std::vector<std::vector<std::string>> rows = {
+      {"poses reached", std::to_string(w.reached) + " of " + std::to_string(w.points.size())},
+      {"extent x (mm)", format_number(w.lower_mm.x()) + " to " + format_number(w.upper_mm.x())},
+      {"extent y (mm)", format_number(w.lower_mm.y()) + " to " + format_number(w.upper_mm.y())},
+      {"extent z (mm)", format_number(w.lower_mm.z()) + " to " + format_number(w.upper_mm.z())},
+      {"occupied volume (L)", format_number(w.occupied_volume_mm3 * 1e-6)},
+      {"poses per second", format_number(w.poses_per_second)},
+  };
+  doc.table({"quantity", "value"}, rows, "The workspace's size and cost (summary.json holds the same)");
+  doc.write(path);
+}
+
+}  // namespace softarm::engine

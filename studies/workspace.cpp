@@ -1,0 +1,102 @@
+#include "studies/workspace.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <tuple>
+
+namespace softarm::studies {
+namespace {
+constexpr double kDeg = 57.295779513082320876;
+
+/// g with g¹⁰ = g + 1, g > 1 (Newton from 1.1): the generalised golden ratio of Roberts' R₉.
+double roberts_ratio() {
+  double g = 1.1;
+  for (int i = 0; i < 60; ++i) g -= (std::pow(g, 10) - g - 1) / (10 * std::pow(g, 9) - 1);
+  return g;
+}
+
+/// The cubes of edge h holding a reached tip, times h³.
+double occupied_volume_mm3(const std::vector<WorkspacePoint>& points, double h) {
+  std::set<std::tuple<long long, long long, long long>> cubes;
+  for (const WorkspacePoint& p : points)
+    if (p.ok)
+      cubes.emplace(std::llround(std::floor(p.tip_mm.x() / h)), std::llround(std::floor(p.tip_mm.y() / h)),
+                    std::llround(std::floor(p.tip_mm.z() / h)));
+  return static_cast<double>(cubes.size()) * h * h * h;
+}
+
+WorkspacePoint pose_point(const fem::SplPressureCells& cells, const std::array<double, 9>& p,
+                          const std::optional<double>& payload_kg) {
+  WorkspacePoint out;
+  out.pressure_kPa = p;
+  for (double x : p) out.pressure_sum_kPa += x;
+  const fem::SpatialCellRodState s = fem::pose_at_pressures(cells, p, nullptr, payload_kg);
+  out.ok = s.ok;
+  if (!s.ok) {
+    out.why = s.diagnosis;
+    return out;
+  }
+  out.tip_mm = s.position.back();
+  // d3 (+z at rest) points from the tip towards the clamp: the tip face's outward normal is −d3.
+  // (+ 0: no "-0" in the outputs where an entry is zero.)
+  out.tip_axis = (-s.frame.back().col(2)).array() + 0.0;
+  out.tip_tilt_deg = std::acos(std::clamp(s.frame.back().col(2).z(), -1.0, 1.0)) * kDeg;
+  return out;
+}
+}  // namespace
+
+std::vector<std::array<double, 9>> workspace_pressures(double max_kPa, int count) {
+  std::vector<std::array<double, 9>> out;
+  for (int corner = 0; corner < 512 && static_cast<int>(out.size()) < count; ++corner) {
+    std::array<double, 9> p{};
+    for (int k = 0; k < 9; ++k) p[k] = (corner >> k) & 1 ? max_kPa : 0.0;
+    out.push_back(p);
+  }
+  const double g = roberts_ratio();
+  std::array<double, 9> alpha{};
+  for (int d = 0; d < 9; ++d) alpha[d] = std::pow(g, -(d + 1));
+  for (long long i = 1; static_cast<int>(out.size()) < count; ++i) {
+    std::array<double, 9> p{};
+    for (int d = 0; d < 9; ++d) {
+      const double x = 0.5 + static_cast<double>(i) * alpha[d];
+      p[d] = max_kPa * (x - std::floor(x));
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
+WorkspaceResult sweep_workspace(const fem::SplPressureCells& cells, const WorkspaceSettings& settings,
+                                const fem::TaskProgress& progress) {
+  WorkspaceResult out;
+  const auto pressures = workspace_pressures(cells.max_pressure_kPa, settings.samples);
+  out.points.resize(pressures.size());
+  const auto t0 = std::chrono::steady_clock::now();
+  // Poses in blocks, so that each task is long enough to pay for its scheduling and the progress
+  // line is not redrawn ten thousand times.
+  constexpr int kBlock = 250;
+  const int n = static_cast<int>(pressures.size()), blocks = (n + kBlock - 1) / kBlock;
+  fem::parallel_tasks(
+      blocks,
+      [&](int b) {
+        for (int i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i)
+          out.points[i] = pose_point(cells, pressures[i], settings.payload_kg);
+      },
+      progress);
+  out.pose_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.poses_per_second = out.pose_seconds > 0 ? n / out.pose_seconds : 0;
+  bool first = true;
+  for (const WorkspacePoint& p : out.points) {
+    if (!p.ok) continue;
+    ++out.reached;
+    out.lower_mm = first ? p.tip_mm : Eigen::Vector3d(out.lower_mm.cwiseMin(p.tip_mm));
+    out.upper_mm = first ? p.tip_mm : Eigen::Vector3d(out.upper_mm.cwiseMax(p.tip_mm));
+    first = false;
+  }
+  out.occupied_volume_mm3 = occupied_volume_mm3(out.points, settings.voxel_mm);
+  return out;
+}
+
+}  // namespace softarm::studies

@@ -1,0 +1,57 @@
+#pragma once
+// An arm's workspace: the tip positions and axes its nine chamber pressures reach within [0, P], on
+// its pressure cells (fem/scenes/spl_pressure_cells.hpp), under the cells' gravity and a payload.
+//
+// The pressures visited (workspace_pressures): every corner of [0, P]⁹ first (512: the extremes of
+// the pressure space, where the workspace's boundary mostly lies), then Roberts' R₉ sequence,
+// xᵢ = frac(½ + i·α), α_d = g^−(d+1) with g the real root of g¹⁰ = g + 1 above 1: a Kronecker
+// sequence of low discrepancy in every projection, deterministic, and extensible (the first N of a
+// longer run are the N of a shorter one).
+//
+// Its size: the extent (the box of the reached tips) and the occupied volume, the volume of the cubes
+// of edge `voxel_mm` holding a reached tip: a lower estimate of the reachable volume at that
+// resolution, which grows with the samples until each cube inside is hit.
+#include <Eigen/Core>
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fem/core/parallel.hpp"
+#include "fem/scenes/spl_pressure_cells.hpp"
+
+namespace softarm::studies {
+
+/// The first `count` pressure vectors (kPa) of the workspace's sampling in [0, max]⁹.
+std::vector<std::array<double, 9>> workspace_pressures(double max_kPa, int count);
+
+struct WorkspaceSettings {
+  int samples = 10000;                  // pressure vectors, corners included
+  std::optional<double> payload_kg;     // at the tip (else the scene's tip mass)
+  double voxel_mm = 10;                 // the occupied volume's cube edge
+};
+
+struct WorkspacePoint {
+  std::array<double, 9> pressure_kPa{};
+  bool ok = false;
+  std::string why;                      // where not ok: outside the cells' reach, or no equilibrium
+  Eigen::Vector3d tip_mm = Eigen::Vector3d::Zero();
+  Eigen::Vector3d tip_axis = Eigen::Vector3d::Zero();  // the tip face's outward normal (unit)
+  double tip_tilt_deg = 0;              // from hanging straight down the rest axis
+  double pressure_sum_kPa = 0;
+};
+
+struct WorkspaceResult {
+  std::vector<WorkspacePoint> points;
+  int reached = 0;
+  Eigen::Vector3d lower_mm = Eigen::Vector3d::Zero(), upper_mm = Eigen::Vector3d::Zero();  // the extent
+  double occupied_volume_mm3 = 0;
+  double pose_seconds = 0;              // wall time of the poses
+  double poses_per_second = 0;
+};
+
+/// The workspace of `cells` at settings' samples, posed side by side on this process' threads.
+WorkspaceResult sweep_workspace(const fem::SplPressureCells& cells, const WorkspaceSettings& settings,
+                                const fem::TaskProgress& progress = {});
+
+}  // namespace softarm::studies
