@@ -5,12 +5,14 @@
 
 #include "engine/cli_checks.hpp"
 #include "engine/report/output_files.hpp"
+#include "engine/workspace/cells_cache.hpp"
 #include "engine/workspace/workspace_report.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/core/thesis_values.hpp"
 #include "fem/io/vtu_writer.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "studies/progress_bar.hpp"
+#include "studies/workspace.hpp"
 
 namespace softarm::engine {
 namespace {
@@ -105,11 +107,8 @@ int run_workspace(const WorkspaceOptions& o) {
   if (config.scene != "spl")
     throw fem::InputError("scene", "'" + config.scene + "': the workspace is an arm's; valid: an spl scene config");
   prepare_output_directory(o.output, "--output");
-  std::cout << "workspace: the arm's cells along " << (o.divisions + 1) * (o.divisions + 2) / 2
-            << " rays of each segment's pressure space, 0 to " << o.max_pressure_kPa << " kPa\n"
-            << std::flush;
-  const fem::SplPressureCells cells = fem::spl_pressure_cells(config.spl, o.max_pressure_kPa, o.divisions,
-                                                              fem::kDefaultCellLevels, {}, studies::task_progress(std::cout, "cells"));
+  const fem::SplPressureCells cells =
+      cached_pressure_cells(o.scene, config, o.max_pressure_kPa, o.divisions, o.output + "/cells.json", std::cout);
   if (!cells.failure.empty()) {
     std::cout << "workspace: no cells: " << cells.failure << "\n";
     write_json_file(o.output, "summary.json", summary_json(o, cells, {}));
@@ -133,7 +132,7 @@ int run_workspace(const WorkspaceOptions& o) {
               << " mm; occupied volume " << std::setprecision(2) << w.occupied_volume_mm3 * 1e-6 << " L at "
               << o.voxel_mm << " mm cubes\n";
   std::cout.unsetf(std::ios::floatfield);
-  std::cout << "written: " << o.output << "/points.csv, workspace.vtu, summary.json, report.html\n";
+  std::cout << "written: " << o.output << "/points.csv, workspace.vtu, summary.json, report.html, cells.json\n";
   return 0;
 }
 

@@ -4,7 +4,8 @@
 // segment's pressure space (fem/scenes/spl_pressure_cells.hpp), then the poses at the workspace's
 // pressure samples (studies/workspace.hpp). Writes points.csv (pressures, tip, axis, per pose),
 // workspace.vtu (the tips as a point cloud with the pressures as fields), summary.json and report.html
-// (the workspace in three projections, coloured by the quantity asked for).
+// (the workspace in three projections, coloured by the quantity asked for), and cells.json, the cells
+// its next run (or `softarm reach --cells`) reads instead of running them (cells_cache.hpp).
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
