@@ -13,15 +13,9 @@
 using namespace softarm::fem;
 
 namespace {
-constexpr double kPeak_kPa = 150;
-constexpr int kLevels = 4;
-
-void coarse_layers(TcaSceneSpec& s) { s.axial_level = 1; }
-
-const SplPressureCells& short_spl_pressure_cells() {
-  static const SplPressureCells cells = spl_pressure_cells(softarm::test::short_spl(), kPeak_kPa, 1, kLevels, coarse_layers);
-  return cells;
-}
+using softarm::test::short_spl_pressure_cells;
+constexpr int kLevels = softarm::test::kShortSplCellLevels;
+void coarse_layers(TcaSceneSpec& s) { softarm::test::short_spl_cell_layers(s); }
 
 /// The arm's own cells at pressures p, posed at p.
 struct Direct {

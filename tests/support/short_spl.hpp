@@ -7,6 +7,7 @@
 
 #include "fem/core/json_reader.hpp"
 #include "fem/scenes/scene_config.hpp"
+#include "fem/scenes/spl_pressure_cells.hpp"
 
 namespace softarm::test {
 
@@ -22,6 +23,17 @@ inline fem::SplSceneSpec short_spl() {
   j["load"] = {{"chamber_pressures_kPa", {0, 150, 150, 0, 120, 120, 100, 0, 0}}, {"gravity_m_s2", {0, 0, 0}}, {"output_count", 2}};
   j["output"] = {{"vtu", false}};
   return fem::read_scene_config(j).spl;
+}
+
+/// The short SPL's pressure cells over [0, 150] kPa on the one-division grid (3 rays), on level 1's
+/// layers (about a minute and a half on 2 cores): made once per test process, shared by the tests.
+constexpr double kShortSplPeak_kPa = 150;
+constexpr int kShortSplCellLevels = 4;
+inline void short_spl_cell_layers(fem::TcaSceneSpec& s) { s.axial_level = 1; }
+inline const fem::SplPressureCells& short_spl_pressure_cells() {
+  static const fem::SplPressureCells cells =
+      fem::spl_pressure_cells(short_spl(), kShortSplPeak_kPa, 1, kShortSplCellLevels, short_spl_cell_layers);
+  return cells;
 }
 
 }  // namespace softarm::test

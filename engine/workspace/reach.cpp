@@ -1,0 +1,125 @@
+#include "engine/workspace/reach.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "engine/optimiser/optimiser.hpp"
+#include "studies/workspace.hpp"
+
+namespace softarm::engine {
+namespace {
+constexpr double kDeg = 57.295779513082320876;
+constexpr double kAxisLever_mm = 100;  // ℓ: the axis' angle weighed as the travel of a point this far along it
+
+struct Pose {
+  bool ok = false;
+  Eigen::Vector3d tip = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> centreline;
+};
+
+Pose pose(const fem::SplPressureCells& cells, const std::array<double, 9>& p, const std::optional<double>& payload) {
+  const fem::SpatialCellRodState s = fem::pose_at_pressures(cells, p, nullptr, payload);
+  if (!s.ok) return {};
+  return {true, s.position.back(), -s.frame.back().col(2), s.position};
+}
+
+double axis_error_rad(const ReachTarget& t, const Eigen::Vector3d& axis) {
+  if (!t.axis) return 0;
+  return std::acos(std::clamp(axis.dot(t.axis->normalized()), -1.0, 1.0));
+}
+
+/// |Δr|² + (ℓθ)², mm².
+double misfit(const ReachTarget& t, const Eigen::Vector3d& tip, const Eigen::Vector3d& axis) {
+  const double angle = axis_error_rad(t, axis);
+  return (tip - t.position_mm).squaredNorm() + kAxisLever_mm * kAxisLever_mm * angle * angle;
+}
+
+std::array<double, 9> as_pressures(const std::vector<double>& x) {
+  std::array<double, 9> p{};
+  std::copy_n(x.begin(), 9, p.begin());
+  return p;
+}
+
+/// The sampled poses nearest the target, each a quarter of P or more from the others in some chamber.
+std::vector<std::array<double, 9>> start_points(const fem::SplPressureCells& cells, const ReachTarget& target,
+                                                const ReachSettings& settings) {
+  studies::WorkspaceSettings ws;
+  ws.samples = settings.seed_samples;
+  ws.payload_kg = settings.payload_kg;
+  const studies::WorkspaceResult w = studies::sweep_workspace(cells, ws);
+  std::vector<const studies::WorkspacePoint*> ranked;
+  for (const auto& p : w.points)
+    if (p.ok) ranked.push_back(&p);
+  std::sort(ranked.begin(), ranked.end(), [&](auto* a, auto* b) {
+    return misfit(target, a->tip_mm, a->tip_axis) < misfit(target, b->tip_mm, b->tip_axis);
+  });
+  std::vector<std::array<double, 9>> starts;
+  for (const auto* p : ranked) {
+    const bool distinct = std::all_of(starts.begin(), starts.end(), [&](const auto& s) {
+      double largest = 0;
+      for (int k = 0; k < 9; ++k) largest = std::max(largest, std::abs(s[k] - p->pressure_kPa[k]));
+      return largest >= 0.25 * cells.max_pressure_kPa;
+    });
+    if (distinct) starts.push_back(p->pressure_kPa);
+    if (static_cast<int>(starts.size()) == settings.starts) break;
+  }
+  return starts;
+}
+
+ReachSolution solve_from(const fem::SplPressureCells& cells, const ReachTarget& target, const ReachSettings& settings,
+                         const std::array<double, 9>& start, int& evaluations) {
+  optimise::Problem problem;
+  for (const char* name : {"p1", "p2", "p3", "p4", "p5", "p6", "p7", "p8", "p9"})
+    problem.variables.push_back({name, optimise::VariableKind::continuous, 0.0, cells.max_pressure_kPa, {}, -1, "kPa"});
+  problem.evaluate = [&](const std::vector<double>& x) {
+    const Pose s = pose(cells, as_pressures(x), settings.payload_kg);
+    optimise::Evaluation e;
+    e.ok = s.ok;
+    if (!s.ok) e.failure_reason = "no equilibrium within the cells' reach";
+    else e.objective = misfit(target, s.tip, s.axis);
+    return e;
+  };
+  optimise::Options options;
+  options.algorithm = "nlopt:slsqp";
+  options.max_evaluations = settings.max_evaluations;
+  options.relative_tolerance = 1e-10;
+  options.finite_difference_step = 1e-5;
+  options.x0.assign(start.begin(), start.end());
+  const optimise::Result r = optimise::minimise(problem, options);
+  evaluations += r.evaluations;
+  ReachSolution out;
+  out.pressure_kPa = as_pressures(r.x);
+  const Pose s = pose(cells, out.pressure_kPa, settings.payload_kg);
+  out.tip_mm = s.tip;
+  out.tip_axis = s.axis;
+  out.centreline_mm = s.centreline;
+  out.distance_mm = s.ok ? (s.tip - target.position_mm).norm() : INFINITY;
+  out.axis_error_deg = s.ok ? axis_error_rad(target, s.axis) * kDeg : INFINITY;
+  return out;
+}
+}  // namespace
+
+ReachResult reach(const fem::SplPressureCells& cells, const ReachTarget& target, const ReachSettings& settings) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ReachResult out;
+  std::vector<ReachSolution> found;
+  for (const auto& start : start_points(cells, target, settings))
+    found.push_back(solve_from(cells, target, settings, start, out.evaluations));
+  std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.distance_mm < b.distance_mm; });
+  if (!found.empty() && std::isfinite(found.front().distance_mm)) out.nearest = found.front();
+  for (const ReachSolution& s : found) {
+    if (!(s.distance_mm <= settings.tolerance_mm && s.axis_error_deg <= settings.tolerance_deg)) continue;
+    const bool distinct = std::all_of(out.solutions.begin(), out.solutions.end(), [&](const ReachSolution& o) {
+      double largest = 0;
+      for (int k = 0; k < 9; ++k) largest = std::max(largest, std::abs(o.pressure_kPa[k] - s.pressure_kPa[k]));
+      return largest >= 0.05 * cells.max_pressure_kPa;
+    });
+    if (distinct) out.solutions.push_back(s);
+  }
+  out.reachable = !out.solutions.empty();
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace softarm::engine
