@@ -24,6 +24,7 @@
 #include "fem/scenes/scene_config.hpp"
 #include "engine/spl_report.hpp"
 #include "engine/tca_report.hpp"
+#include "engine/workspace/reach_command.hpp"
 #include "engine/workspace/workspace_command.hpp"
 #include "fem/scenes/tca_export.hpp"
 #include "fem/core/input_error.hpp"
@@ -302,6 +303,8 @@ int run_cli(int argc, char** argv) {
   add_material_command(app);
   WorkspaceOptions workspace_options;
   CLI::App* workspace = add_workspace_command(app, workspace_options);
+  ReachOptions reach_options;
+  CLI::App* reach = add_reach_command(app, reach_options);
 
   // Bare `softarm`: the help, not an error. An unknown command: the nearest known one.
   if (argc == 1) {
@@ -333,6 +336,7 @@ int run_cli(int argc, char** argv) {
     if (*design) return run_design(design_file, design_overrides);
     if (*study) return run_study_command(study_options);
     if (*workspace) return run_workspace(workspace_options);
+    if (*reach) return run_reach(reach_options);
     if (*fidelity) {
       print_fidelity_ladders();
       if (!fidelity_report.empty()) write_fidelity_report(fidelity_report);

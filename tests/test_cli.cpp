@@ -413,3 +413,30 @@ TEST_CASE("simulate keeps a 3D path as it goes: a rerun resumes it, a changed sc
   CHECK(unwritable.exit_code == 2);
   CHECK(unwritable.output.find("output.directory") != std::string::npos);
 }
+
+TEST_CASE("workspace and reach refuse bad input with the option or field named, before any cells", "[cli][workspace]") {
+  const std::string spl = std::string(SOFTARM_SOURCE_DIR) + "/configs/spl_thesis_pose.json";
+  const std::string out = (std::filesystem::temp_directory_path() / "softarm_cli_test" / "ws_refused").string();
+  std::filesystem::remove_all(out);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"workspace " + spl + " -o " + out + " --samples 0", "--samples"},
+      {"workspace " + spl + " -o " + out + " --max-pressure-kPa nan", "--max-pressure-kPa"},
+      {"workspace " + spl + " -o " + out + " --directions 9", "--directions"},
+      {"workspace " + std::string(SOFTARM_SOURCE_DIR) + "/configs/tca_thesis.json -o " + out, "'scene'"},
+      {"reach " + spl + " -o " + out, "--target"},
+      {"reach " + spl + " -o " + out + " --target 1,2", "--target"},
+      {"reach " + spl + " -o " + out + " --target 0,0,inf", "--target"},
+      {"reach " + spl + " -o " + out + " --target 0,0,100 --axis 0,0,0", "--axis"},
+      {"reach " + spl + " -o " + out + " --target 0,0,100 --payload-kg -1", "--payload-kg"},
+      {"reach -o " + out + " --tasks " + write_config("tasks_bad.json", R"({"scene": "x.json", "targets": [{"name": "cup", "position_mm": [1, 2]}]})"),
+       "targets[0].position_mm"},
+      {"reach -o " + out + " --tasks " + write_config("tasks_typo.json", R"({"scene": "x.json", "targetz": []})"), "targetz"},
+  };
+  for (const auto& [args, field] : cases) {
+    const auto r = run_softarm(args);
+    INFO(args << "\n" << r.output);
+    CHECK(r.exit_code == 2);
+    CHECK(r.output.find(field) != std::string::npos);
+  }
+  CHECK_FALSE(std::filesystem::exists(out));  // nothing written
+}

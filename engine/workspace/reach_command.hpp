@@ -1,0 +1,34 @@
+#pragma once
+// `softarm reach <spl scene.json> --target x,y,z [--axis x,y,z] [--payload-kg m]` and
+// `softarm reach --tasks <tasks.json>`: the chamber pressures that put the arm's tip on each target
+// (reach.hpp), on the arm's pressure cells (read from --cells where a workspace run left them, else
+// run and kept there: cells_cache.hpp). Writes reach.json (per target: reachable or not, the distinct
+// solutions' pressures, tips, axes and distances, or the nearest point found) and poses.vtu (each
+// solution's centreline, for ParaView).
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace softarm::engine {
+
+struct ReachOptions {
+  std::string scene, tasks;
+  std::string output = "out/reach";
+  std::string cells;                    // default: <output>/cells.json
+  std::vector<double> target_mm, axis;  // 3 each where given
+  std::optional<double> payload_kg;
+  double max_pressure_kPa = 0;          // set from the thesis' working pressure when registered
+  int divisions = 1;
+  int starts = 4;
+  double tolerance_mm = 0.5;
+};
+
+/// Registers the `reach` subcommand on `app`, its options bound to `options`; returns it.
+CLI::App* add_reach_command(CLI::App& app, ReachOptions& options);
+
+/// Runs it: 0 when every target was reached, 1 when one was not (each said in reach.json and on the
+/// console). Bad options and files throw fem::InputError before anything is written.
+int run_reach(ReachOptions options);
+
+}  // namespace softarm::engine
