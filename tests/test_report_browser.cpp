@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,7 @@
 
 #include "engine/report/html_document.hpp"
 #include "engine/report/svg_plot.hpp"
+#include "engine/workspace/workspace_report.hpp"
 #include "support/browser_render.hpp"
 #include "support/external_tool.hpp"
 
@@ -182,4 +184,39 @@ TEST_CASE("the browser check catches broken plots and pages", "[report][browser]
         CHECK_FALSE(missing.ok);
         CHECK_THAT(missing.error, Catch::Contains("nonexistent.html"));
     }
+}
+
+TEST_CASE("the workspace report draws the tips in three projections in Chromium", "[report][browser][workspace]") {
+    if (softarm::test::skip_without(!softarm::test::find_chromium().empty(), "headless Chromium",
+                                    "Debian package chromium; scripts/setup.sh installs it"))
+        return;
+    TempDir dir;
+    // Tips on a bowl under the shoulder, as a hanging arm's: enough to see the drawing, no cells needed.
+    softarm::studies::WorkspaceResult w;
+    for (int i = 0; i < 400; ++i) {
+        softarm::studies::WorkspacePoint p;
+        p.ok = i % 50 != 7;  // a few not reached: left out of the plots
+        const double a = 0.1 * i, r = 150.0 * (i % 20) / 20;
+        p.tip_mm = {r * std::cos(a), r * std::sin(a), -20 + r * r / 300};
+        p.pressure_sum_kPa = 10.0 * i;
+        p.tip_tilt_deg = r / 3;
+        w.points.push_back(p);
+        if (!p.ok) continue;
+        ++w.reached;
+        w.lower_mm = w.lower_mm.cwiseMin(p.tip_mm);
+        w.upper_mm = w.upper_mm.cwiseMax(p.tip_mm);
+    }
+    const fs::path file = dir.path / "report.html";
+    softarm::engine::write_workspace_report(file.string(), w, "pressure_sum", "configs/spl_thesis_pose.json");
+    const BrowserRender r = render_or_fail(file);
+    CHECK(r.js_errors.empty());
+    REQUIRE(r.svgs.size() == 3);
+    for (const auto& svg : r.svgs) {
+        INFO(svg.describe());
+        CHECK(svg.width > 100);
+        CHECK(svg.marks > 20);  // the four bands' markers (a path each), axes, ticks and legend
+        CHECK(svg.marks_outside == 0);
+        CHECK(svg.inked > 0.02);
+    }
+    CHECK(r.svgs[0].svg_title == "Seen from above (x-y)");
 }
