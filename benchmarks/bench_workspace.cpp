@@ -4,7 +4,10 @@
 // --cells (a `softarm workspace` run's cells.json for the same scene), else they are run (minutes)
 // and kept there.
 //
-//   bench_workspace [scene] [--cells F] [--samples N] [--threads N]
+//   bench_workspace [scene] [--cells F] [--samples N] [--threads N] [--interval-mm H]
+//   --interval-mm H: also the workspace with the rod integrated over intervals of H mm (its default
+//     is 0.5 mm): poses per second and the largest tip difference from the default's
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <iomanip>
@@ -23,11 +26,15 @@ using namespace softarm;
 int main(int argc, char** argv) try {
   std::string scene = "configs/spl_thesis_pose.json", cells_file = "out/workspace/cells.json";
   int samples = 10000, threads = fem::thread_count();
+  double interval_mm = 0;
   CLI::App app{"the workspace and reach on an arm's pressure cells: poses per second, the thesis pose found again"};
   app.add_option("scene", scene, "an spl scene config");
   app.add_option("--cells", cells_file, "the pressure cells' file (read where it matches, else written)");
   app.add_option("--samples", samples, "poses of the workspace")->check(CLI::Range(1, 1000000));
   app.add_option("--threads", threads, "threads for the workspace's second sweep")->check(CLI::Range(1, 256));
+  app.add_option("--interval-mm", interval_mm, "also integrate the rod over intervals of this length")
+      ->check(bench::Positive)
+      ->default_str("none");
   if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
   const fem::SceneConfig config = fem::load_scene_config(scene);
   const fem::SplPressureCells cells = engine::cached_pressure_cells(
@@ -46,6 +53,21 @@ int main(int argc, char** argv) try {
               << " poses in " << w.pose_seconds << " s, " << std::setprecision(0) << w.poses_per_second
               << " poses/s; extent " << std::setprecision(1) << w.lower_mm.transpose() << " to " << w.upper_mm.transpose()
               << " mm; occupied " << std::setprecision(2) << w.occupied_volume_mm3 * 1e-6 << " L at 10 mm cubes\n";
+  }
+  if (interval_mm > 0) {
+    fem::set_thread_count(1);
+    studies::WorkspaceSettings fine_settings = settings, coarse_settings = settings;
+    fine_settings.rod_interval_mm = cells.rays.front().rod.interval_mm;  // the rod's own
+    coarse_settings.rod_interval_mm = interval_mm;
+    const studies::WorkspaceResult fine = studies::sweep_workspace(cells, fine_settings);
+    const studies::WorkspaceResult w = studies::sweep_workspace(cells, coarse_settings);
+    double largest = 0;
+    for (std::size_t i = 0; i < w.points.size(); ++i)
+      if (w.points[i].ok && fine.points[i].ok) largest = std::max(largest, (w.points[i].tip_mm - fine.points[i].tip_mm).norm());
+    std::cout << std::setprecision(2) << "intervals of " << interval_mm << " mm, 1 thread: " << w.pose_seconds << " s, "
+              << std::setprecision(0) << w.poses_per_second << " poses/s (" << fine.poses_per_second << " at "
+              << std::setprecision(2) << fine_settings.rod_interval_mm << " mm); tips at most " << std::setprecision(3) << largest
+              << " mm from the default's\n";
   }
   // The thesis' arbitrary pose, forward and back.
   const std::array<double, 9> thesis = {0, 345, 345, 0, 86, 345, 0, 0, 59};

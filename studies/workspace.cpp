@@ -71,6 +71,9 @@ std::vector<std::array<double, 9>> workspace_pressures(double max_kPa, int count
 WorkspaceResult sweep_workspace(const fem::SplPressureCells& cells, const WorkspaceSettings& settings,
                                 const fem::TaskProgress& progress) {
   WorkspaceResult out;
+  // The rods at any pressures take the first ray's interval (spl_pressure_cells.cpp, rod_at_pressures).
+  fem::SplPressureCells sweep_cells = cells;
+  if (!sweep_cells.rays.empty()) sweep_cells.rays.front().rod.interval_mm = settings.rod_interval_mm;
   const auto pressures = workspace_pressures(cells.max_pressure_kPa, settings.samples);
   out.points.resize(pressures.size());
   const auto t0 = std::chrono::steady_clock::now();
@@ -82,7 +85,7 @@ WorkspaceResult sweep_workspace(const fem::SplPressureCells& cells, const Worksp
       blocks,
       [&](int b) {
         for (int i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i)
-          out.points[i] = pose_point(cells, pressures[i], settings.payload_kg);
+          out.points[i] = pose_point(sweep_cells, pressures[i], settings.payload_kg);
       },
       progress);
   out.pose_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
