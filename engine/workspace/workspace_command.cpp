@@ -55,6 +55,15 @@ void write_points_vtu(const std::string& dir, const studies::WorkspaceResult& w)
 
 nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
+/// The poses not reached: beyond the cells' reach (a segment past where a ray's cells stopped), or no
+/// equilibrium of the rod.
+std::pair<int, int> not_reached(const studies::WorkspaceResult& w) {
+  int beyond = 0, other = 0;
+  for (const studies::WorkspacePoint& p : w.points)
+    if (!p.ok) ++(p.why.find("beyond where its cells reached") != std::string::npos ? beyond : other);
+  return {beyond, other};
+}
+
 nlohmann::json summary_json(const WorkspaceOptions& o, const fem::SplPressureCells& cells,
                             const studies::WorkspaceResult& w) {
   nlohmann::json j = {{"scene", o.scene},
@@ -71,6 +80,10 @@ nlohmann::json summary_json(const WorkspaceOptions& o, const fem::SplPressureCel
   if (o.payload_kg) j["payload_kg"] = *o.payload_kg;
   if (w.reached > 0) j["extent_mm"] = {{"lower", vector_json(w.lower_mm)}, {"upper", vector_json(w.upper_mm)}};
   if (!cells.failure.empty()) j["failure"] = cells.failure;
+  const auto [beyond, other] = not_reached(w);
+  j["not_reached"] = {{"beyond_the_cells", beyond}, {"no_equilibrium", other}};
+  j["cells_notes"] = nlohmann::json::array();
+  for (const fem::SplCells& ray : cells.rays) j["cells_notes"].push_back(ray.notes);
   return j;
 }
 }  // namespace
@@ -131,6 +144,11 @@ int run_workspace(const WorkspaceOptions& o) {
               << w.lower_mm.y() << " to " << w.upper_mm.y() << ", z " << w.lower_mm.z() << " to " << w.upper_mm.z()
               << " mm; occupied volume " << std::setprecision(2) << w.occupied_volume_mm3 * 1e-6 << " L at "
               << o.voxel_mm << " mm cubes\n";
+  if (const auto [beyond, other] = not_reached(w); beyond + other > 0) {
+    std::cout << "  not reached: " << beyond << " beyond where the cells reached, " << other << " without an equilibrium";
+    if (beyond > 0) std::cout << "; the cells' stops: " << cells.rays.front().notes;
+    std::cout << "\n";
+  }
   std::cout.unsetf(std::ios::floatfield);
   std::cout << "written: " << o.output << "/points.csv, workspace.vtu, summary.json, report.html, cells.json\n";
   return 0;
