@@ -4,7 +4,8 @@
 // --cells (a `softarm workspace` run's cells.json for the same scene), else they are run (minutes)
 // and kept there.
 //
-//   bench_workspace [scene] [--cells F] [--samples N] [--threads N] [--interval-mm H]
+//   bench_workspace [scene] [--cells F] [--samples N] [--threads N] [--interval-mm H] [--pose p1,...,p9]
+//   --pose: also the tip at these nine pressures (kPa), e.g. a reach solution to run in 3D
 //   --interval-mm H: also the workspace with the rod integrated over intervals of H mm (its default
 //     is 0.5 mm): poses per second and the largest tip difference from the default's
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <chrono>
 #include <iomanip>
 #include <iostream>
+#include <vector>
 
 #include "benchmarks/bench_options.hpp"
 #include "engine/workspace/cells_cache.hpp"
@@ -27,6 +29,7 @@ int main(int argc, char** argv) try {
   std::string scene = "configs/spl_thesis_pose.json", cells_file = "out/workspace/cells.json";
   int samples = 10000, threads = fem::thread_count();
   double interval_mm = 0;
+  std::vector<double> pose;
   CLI::App app{"the workspace and reach on an arm's pressure cells: poses per second, the thesis pose found again"};
   app.add_option("scene", scene, "an spl scene config");
   app.add_option("--cells", cells_file, "the pressure cells' file (read where it matches, else written)");
@@ -35,6 +38,7 @@ int main(int argc, char** argv) try {
   app.add_option("--interval-mm", interval_mm, "also integrate the rod over intervals of this length")
       ->check(bench::Positive)
       ->default_str("none");
+  app.add_option("--pose", pose, "also the tip at these nine pressures, kPa")->delimiter(',')->expected(9)->check(bench::Finite);
   if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
   const fem::SceneConfig config = fem::load_scene_config(scene);
   const fem::SplPressureCells cells = engine::cached_pressure_cells(
@@ -53,6 +57,14 @@ int main(int argc, char** argv) try {
               << " poses in " << w.pose_seconds << " s, " << std::setprecision(0) << w.poses_per_second
               << " poses/s; extent " << std::setprecision(1) << w.lower_mm.transpose() << " to " << w.upper_mm.transpose()
               << " mm; occupied " << std::setprecision(2) << w.occupied_volume_mm3 * 1e-6 << " L at 10 mm cubes\n";
+  }
+  if (!pose.empty()) {
+    std::array<double, 9> p{};
+    std::copy(pose.begin(), pose.end(), p.begin());
+    const fem::SpatialCellRodState s = fem::pose_at_pressures(cells, p);
+    std::cout << std::setprecision(2) << "pose: ";
+    if (s.ok) std::cout << "tip " << s.position.back().transpose() << " mm, rest tip " << fem::pose_at_pressures(cells, {}).position.back().transpose() << " mm\n";
+    else std::cout << s.diagnosis << "\n";
   }
   if (interval_mm > 0) {
     fem::set_thread_count(1);
