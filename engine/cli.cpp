@@ -7,7 +7,7 @@
 #include <iomanip>
 #include <iostream>
 
-#include "engine/cli_checks.hpp"
+#include "engine/options/option_checks.hpp"
 #include "engine/design/design_command.hpp"
 #include "fem/core/number_text.hpp"
 #include "fem/core/thesis_values.hpp"

@@ -3,7 +3,7 @@
 #include <iomanip>
 #include <iostream>
 
-#include "engine/cli_checks.hpp"
+#include "engine/options/option_checks.hpp"
 #include "engine/report/output_files.hpp"
 #include "engine/workspace/cells_cache.hpp"
 #include "engine/workspace/workspace_report.hpp"

@@ -1,5 +1,6 @@
 #pragma once
-// Checks for command-line options shared by the subcommands.
+// Checks for command-line options shared by the subcommands: a folder of its own, which the
+// subcommands' folders (engine/workspace) and engine/cli.cpp both use.
 #include <CLI/CLI.hpp>
 #include <string>
 

@@ -1,4 +1,4 @@
-#include "engine/cli_checks.hpp"
+#include "engine/options/option_checks.hpp"
 
 #include <cmath>
 
