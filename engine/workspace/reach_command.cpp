@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <iostream>
 
+#include "engine/optimiser/optimiser.hpp"
 #include "engine/options/option_checks.hpp"
 #include "engine/report/output_files.hpp"
 #include "engine/workspace/cells_cache.hpp"
@@ -73,10 +74,10 @@ void print(const ReachTarget& t, const ReachResult& r) {
     std::cout << "reached, " << r.solutions.size() << " distinct solution(s); first " << pressures(r.solutions.front())
               << ", " << std::setprecision(3) << r.solutions.front().distance_mm << " mm off\n";
   else if (r.nearest)
-    std::cout << "NOT reachable: the nearest point found is " << std::setprecision(1) << r.nearest->distance_mm
+    std::cout << "NOT reached from " << r.starts << " starts: the nearest point found is " << std::setprecision(1) << r.nearest->distance_mm
               << " mm away, at " << r.nearest->tip_mm.transpose() << " mm (" << pressures(*r.nearest) << ")\n";
   else
-    std::cout << "NOT reachable: no start posed within the cells' reach\n";
+    std::cout << "NOT reached: no start posed within the cells' reach\n";
   std::cout.unsetf(std::ios::floatfield);
 }
 }  // namespace
@@ -101,6 +102,9 @@ CLI::App* add_reach_command(CLI::App& app, ReachOptions& o) {
       ->capture_default_str();
   r->add_option("--starts", o.starts, "local searches, from the sampled poses nearest the target")->check(CLI::Range(1, 64))->capture_default_str();
   r->add_option("--tolerance-mm", o.tolerance_mm, "a target is reached within this")->check(finite_in(1e-3, 100, "mm"))->capture_default_str();
+  r->add_option("--algorithm", o.algorithm, "the local search (engine/optimiser's names)")
+      ->check(CLI::IsMember(optimise::algorithm_names()))
+      ->capture_default_str();
   return r;
 }
 
@@ -134,6 +138,7 @@ int run_reach(ReachOptions o) {
   settings.payload_kg = o.payload_kg;
   settings.starts = o.starts;
   settings.tolerance_mm = o.tolerance_mm;
+  settings.algorithm = o.algorithm;
   json report = json::array();
   std::vector<std::vector<Eigen::Vector3d>> lines;
   fem::NamedField which{"target", 1, {}};
@@ -143,7 +148,7 @@ int run_reach(ReachOptions o) {
     print(targets[i], r);
     all = all && r.reachable;
     json j = {{"name", targets[i].name}, {"target_mm", vector_json(targets[i].position_mm)}, {"reachable", r.reachable},
-              {"evaluations", r.evaluations}, {"seconds", r.seconds}, {"solutions", json::array()}};
+              {"starts", r.starts}, {"evaluations", r.evaluations}, {"seconds", r.seconds}, {"solutions", json::array()}};
     if (targets[i].axis) j["axis"] = vector_json(targets[i].axis->normalized());
     for (const ReachSolution& s : r.solutions) {
       j["solutions"].push_back(solution_json(s));

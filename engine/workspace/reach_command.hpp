@@ -20,8 +20,9 @@ struct ReachOptions {
   std::optional<double> payload_kg;
   double max_pressure_kPa = 0;          // set from the thesis' working pressure when registered
   int divisions = 1;
-  int starts = 4;
+  int starts = 16;
   double tolerance_mm = 0.5;
+  std::string algorithm = "nlopt:slsqp";
 };
 
 /// Registers the `reach` subcommand on `app`, its options bound to `options`; returns it.

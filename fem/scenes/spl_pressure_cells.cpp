@@ -1,5 +1,6 @@
 #include "fem/scenes/spl_pressure_cells.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <sstream>
 
@@ -109,6 +110,20 @@ SplPressureCells spl_pressure_cells(const SplSceneSpec& spec, double max_pressur
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
+}
+
+double segment_reach_kPa(const SplPressureCells& cells, int n) {
+  double reach = cells.max_pressure_kPa;
+  for (const SplCells& ray : cells.rays) {
+    int segment = -1;
+    for (const SpatialCellPiece& piece : ray.rod.pieces) {
+      if (piece.cells.empty()) continue;  // a connector
+      if (++segment != n) continue;
+      for (const SpatialCellTable& c : piece.cells) reach = std::min(reach, c.level.back() * cells.max_pressure_kPa);
+      for (const SpatialEndTable& e : piece.ends) reach = std::min(reach, e.level.back() * cells.max_pressure_kPa);
+    }
+  }
+  return reach;
 }
 
 PressureRod rod_at_pressures(const SplPressureCells& cells, const std::array<double, 9>& p) {

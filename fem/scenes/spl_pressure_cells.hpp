@@ -44,6 +44,11 @@ SplPressureCells spl_pressure_cells(const SplSceneSpec& spec, double max_pressur
                                     const std::function<void(TcaSceneSpec&)>& adjust = {},
                                     const TaskProgress& progress = {});
 
+/// Segment n's (0..2) highest peak s that the cells of every ray reached: P where they all completed,
+/// else where the first stopped (a limit point: the design's burst on that segment). Every pressure
+/// triple of that segment with its peak up to it has a rod.
+double segment_reach_kPa(const SplPressureCells& cells, int n);
+
 /// The rod of the arm at the nine chamber pressures p (kPa, chamber 3n+k of segment n): its tables hold
 /// the rest state at level 0 and the state at p at level 1, to be solved at level 1. Not `ok` where a
 /// pressure lies outside [0, P] or beyond the reach of a ray it reads (`why` says which).
