@@ -41,6 +41,14 @@ std::array<double, 9> as_pressures(const std::vector<double>& x) {
   return p;
 }
 
+/// The largest difference of two pressure vectors in any chamber (kPa): how distinct two starts or
+/// two solutions are.
+double largest_difference(const std::array<double, 9>& a, const std::array<double, 9>& b) {
+  double largest = 0;
+  for (int k = 0; k < 9; ++k) largest = std::max(largest, std::abs(a[k] - b[k]));
+  return largest;
+}
+
 /// The sampled poses nearest the target, each a quarter of P or more from the others in some chamber.
 std::vector<std::array<double, 9>> start_points(const fem::SplPressureCells& cells, const ReachTarget& target,
                                                 const ReachSettings& settings) {
@@ -57,9 +65,7 @@ std::vector<std::array<double, 9>> start_points(const fem::SplPressureCells& cel
   std::vector<std::array<double, 9>> starts;
   for (const auto* p : ranked) {
     const bool distinct = std::all_of(starts.begin(), starts.end(), [&](const auto& s) {
-      double largest = 0;
-      for (int k = 0; k < 9; ++k) largest = std::max(largest, std::abs(s[k] - p->pressure_kPa[k]));
-      return largest >= 0.25 * cells.max_pressure_kPa;
+      return largest_difference(s, p->pressure_kPa) >= 0.25 * cells.max_pressure_kPa;
     });
     if (distinct) starts.push_back(p->pressure_kPa);
     if (static_cast<int>(starts.size()) == settings.starts) break;
@@ -118,9 +124,7 @@ ReachResult reach(const fem::SplPressureCells& cells, const ReachTarget& target,
   for (const ReachSolution& s : found) {
     if (!(s.distance_mm <= settings.tolerance_mm && s.axis_error_deg <= settings.tolerance_deg)) continue;
     const bool distinct = std::all_of(out.solutions.begin(), out.solutions.end(), [&](const ReachSolution& o) {
-      double largest = 0;
-      for (int k = 0; k < 9; ++k) largest = std::max(largest, std::abs(o.pressure_kPa[k] - s.pressure_kPa[k]));
-      return largest >= 0.05 * cells.max_pressure_kPa;
+      return largest_difference(o.pressure_kPa, s.pressure_kPa) >= 0.05 * cells.max_pressure_kPa;
     });
     if (distinct) out.solutions.push_back(s);
   }
