@@ -13,6 +13,7 @@
 
 #include "engine/workspace/reach.hpp"
 #include "studies/workspace.hpp"
+#include "fem/scenes/chamber_stretch.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
 #include "fem/scenes/spl_pressure_cells.hpp"
 #include "support/short_spl.hpp"
@@ -118,6 +119,43 @@ TEST_CASE("The short SPL's pressure cells: the arm's own cells on their rays, cl
     CHECK(rod.why.find("chamber 5 at 151 kPa") != std::string::npos);
     p[4] = std::nan("");
     CHECK_FALSE(rod_at_pressures(cells, p).ok);
+  }
+  SECTION("A chamber's axial stretch in a pose is that of the fibre along its axis, measured on the posed rod") {
+    // A pose in no plane, under its weight and a 0.2 kg tip mass hanging: the chambers' stretch from
+    // the intervals' λ and κ (chamber_stretch.hpp) against the fibres' own, |Δ(r + R·d)| / ΔZ between
+    // the posed nodes.
+    const std::array<double, 9> p = {120, 30, 0, 0, 150, 60, 90, 90, 20};
+    PressureRod rod = rod_at_pressures(cells, p);
+    REQUIRE(rod.ok);
+    rod.rod.gravity_m_s2 = Eigen::Vector3d(0, 0, -9.81);
+    rod.rod.tip_mass_kg = 0.2;
+    const SpatialCellRodState pose = solve_spatial_cell_rod(rod.rod, 1.0);
+    REQUIRE(pose.ok);
+    const SplDesign design = softarm::test::short_spl().design;
+    const std::array<double, 3> stretch = chamber_axis_stretch(design, rod.rod, pose);
+    for (std::size_t piece = 0, n = 0; piece < rod.rod.pieces.size(); ++piece) {
+      const SpatialCellPiece& part = rod.rod.pieces[piece];
+      if (part.cells.empty()) continue;
+      const int first = pose.piece_first_node[piece], last = pose.piece_last_node[piece];
+      const double dz = part.length_mm / (last - first);
+      double measured = 1;
+      for (int i = first; i < last; ++i) {
+        const double z = part.length_mm - (i - first + 0.5) * dz;
+        if (z < part.cap_mm || z > part.length_mm - part.cap_mm) continue;
+        const double a = design.segments[n].axis_distance(z);
+        for (int k = 0; k < 3; ++k) {
+          const double angle = k * 2.0943951023931954923;
+          const Eigen::Vector3d d(a * std::cos(angle), a * std::sin(angle), 0);
+          const Eigen::Vector3d upper = pose.position[i] + pose.frame[i] * d;
+          const Eigen::Vector3d lower = pose.position[i + 1] + pose.frame[i + 1] * d;
+          measured = std::max(measured, (upper - lower).norm() / dz);
+        }
+      }
+      INFO("segment " << n + 1 << ": " << stretch[n] << " against the fibres' " << measured);
+      CHECK(stretch[n] > 1.01);  // every segment is pressurised: a chamber lengthens
+      CHECK(stretch[n] == Approx(measured).epsilon(0).margin(1e-3 * (measured - 1) + 1e-5));
+      ++n;
+    }
   }
   SECTION("reach finds again the tip of poses at random pressures") {
     std::mt19937 rng(11);

@@ -158,8 +158,9 @@ SpatialCellRodState solve_spatial_cell_rod(const SpatialCellRodSpec& spec, doubl
   std::vector<Vec3> moment(n, Vec3::Zero()), next(n);
   std::vector<double> tension(n, 0.0);
   if (start && static_cast<int>(start->moment_Nmm.size()) == n) moment = start->moment_Nmm;
-  std::vector<Vec3> r(n + 1);
+  std::vector<Vec3> r(n + 1), curvature(n);
   std::vector<Mat3> R(n + 1);
+  std::vector<double> stretches(n);
   // The iterate: every interval's moment and tension, which the shape they produce maps to new
   // ones. The map is a contraction only while the weight bends the rod little; Anderson mixing of
   // the last few iterates (Walker & Ni 2011) settles it where plain iteration oscillates or
@@ -186,6 +187,7 @@ SpatialCellRodState solve_spatial_cell_rod(const SpatialCellRodSpec& spec, doubl
       k.head<2>() += s.bending * local.head<2>();
       k.z() += s.torsion * local.z();
       const double stretch = s.free_stretch + s.axial * tension[i];
+      curvature[i] = k, stretches[i] = stretch;
       const Mat3 half = R[i] * rotation_exp(-0.5 * s.length * k);
       R[i + 1] = R[i] * rotation_exp(-s.length * k);
       r[i + 1] = r[i] - s.length * stretch * half.col(2);
@@ -233,6 +235,8 @@ SpatialCellRodState solve_spatial_cell_rod(const SpatialCellRodSpec& spec, doubl
   out.position.assign(r.begin(), r.end());
   out.frame.assign(R.begin(), R.end());
   out.moment_Nmm = moment;
+  out.stretch = std::move(stretches);
+  out.curvature_per_mm = std::move(curvature);
   return out;
 }
 

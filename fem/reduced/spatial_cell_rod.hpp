@@ -72,6 +72,10 @@ struct SpatialCellRodState {
   std::vector<Eigen::Matrix3d> frame;     // per node: the section's rotation from rest
   std::vector<int> piece_first_node, piece_last_node;
   std::vector<Eigen::Vector3d> moment_Nmm;  // per interval: M on the part below its midpoint, scene frame
+  /// Per interval, in its material frame: the axis' stretch λ and curvature κ under the moments (κ_z the
+  /// twist rate), so that a fibre at section offset d (mm, material frame) stretches by λ + (κ × d)·e3.
+  std::vector<double> stretch;
+  std::vector<Eigen::Vector3d> curvature_per_mm;
   int iterations = 0;                     // shape–moment fixed-point iterations
   bool ok = false;
   std::string diagnosis;                  // why not ok
