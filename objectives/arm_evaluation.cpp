@@ -32,13 +32,6 @@ fem::ArmRodSpec rod_spec(const ArmCandidate& c, const EvaluationSettings& s) {
   return spec;
 }
 
-// The lone RRA's FEM path, far enough to cover the axial stretch `stretch` that its
-// actuators reach in the 3CA (with a 25 % margin on the strain): the free RRA stretches far
-// more than an embedded one at the same pressure (thesis RRA: λ̄ = 1.40 at 172 kPa, while the
-// 3CA's chambers reach 1.42 at 344.7 kPa), so the path stops well below the working pressure,
-// where a thin-walled free RRA would balloon for reasons the 3CA does not share. The end
-// pressure comes from the rod's own lone-RRA model, which extends less than the FEM (so the
-// FEM covers the stretch).
 }  // namespace
 
 fem::RraCalibration segment_rra_fem(const ArmCandidate& c, const EvaluationSettings& s, int n, double stretch) {
@@ -48,19 +41,7 @@ fem::RraCalibration segment_rra_fem(const ArmCandidate& c, const EvaluationSetti
   spec.ring_material = c.rings;
   spec.mesh_level = s.rra_mesh_level;
   spec.peak_averaging_radius_mm = s.peak_averaging_radius_mm;
-  const fem::FibreLaw law(*c.tube.law);
-  const double target_mm = 1.25 * (stretch - 1) * spec.design.length_mm;
-  double lo = 0, hi = s.working_pressure_kPa;
-  const double at_max = fem::rod_rra_extension_mm(spec.design, law, hi, 1.0);
-  if (std::isfinite(at_max) && at_max > target_mm) {
-    for (int it = 0; it < 40; ++it) {  // bisection: the extension grows with the pressure
-      const double mid = 0.5 * (lo + hi), e = fem::rod_rra_extension_mm(spec.design, law, mid, 1.0);
-      (std::isfinite(e) && e < target_mm ? lo : hi) = mid;
-    }
-  }
-  spec.path.max_pressure_kPa = std::max(hi, 0.05 * s.working_pressure_kPa);
-  for (int k = 1; k <= 8; ++k) spec.path.output_pressures_kPa.push_back(spec.path.max_pressure_kPa * k / 8);
-  return fem::calibrate_rra(spec);
+  return fem::calibrate_rra_to_stretch(spec, stretch, s.working_pressure_kPa);
 }
 
 namespace {

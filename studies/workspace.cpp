@@ -6,6 +6,9 @@
 #include <set>
 #include <tuple>
 
+#include "fem/core/parallel.hpp"
+#include "fem/scenes/chamber_stretch.hpp"
+
 namespace softarm::studies {
 namespace {
 constexpr double kDeg = 57.295779513082320876;
@@ -28,7 +31,8 @@ double occupied_volume_mm3(const std::vector<WorkspacePoint>& points, double h) 
 }
 
 WorkspacePoint pose_point(const fem::SplPressureCells& cells, const std::array<double, 9>& p,
-                          const std::optional<double>& payload_kg) {
+                          const WorkspaceSettings& settings) {
+  const std::optional<double>& payload_kg = settings.payload_kg;
   WorkspacePoint out;
   out.pressure_kPa = p;
   for (double x : p) out.pressure_sum_kPa += x;
@@ -43,6 +47,8 @@ WorkspacePoint pose_point(const fem::SplPressureCells& cells, const std::array<d
   // (+ 0: no "-0" in the outputs where an entry is zero.)
   out.tip_axis = (-s.frame.back().col(2)).array() + 0.0;
   out.tip_tilt_deg = std::acos(std::clamp(s.frame.back().col(2).z(), -1.0, 1.0)) * kDeg;
+  // The pieces' lengths and caps are every ray's (rod_at_pressures changes the cells' tables only).
+  if (settings.design) out.chamber_stretch = fem::chamber_axis_stretch(*settings.design, cells.rays.front().rod, s);
   return out;
 }
 }  // namespace
@@ -85,7 +91,7 @@ WorkspaceResult sweep_workspace(const fem::SplPressureCells& cells, const Worksp
       blocks,
       [&](int b) {
         for (int i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i)
-          out.points[i] = pose_point(sweep_cells, pressures[i], settings.payload_kg);
+          out.points[i] = pose_point(sweep_cells, pressures[i], settings);
       },
       progress);
   out.pose_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -100,6 +106,36 @@ WorkspaceResult sweep_workspace(const fem::SplPressureCells& cells, const Worksp
   }
   out.occupied_volume_mm3 = occupied_volume_mm3(out.points, settings.voxel_mm);
   return out;
+}
+
+WorkspacePeakMaps judge_workspace_peaks(WorkspaceResult& w, const fem::SplSceneSpec& arm, double max_pressure_kPa,
+                                        int rra_mesh_level, double averaging_radius_mm) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::array<double, 3> largest{1, 1, 1};
+  for (const WorkspacePoint& p : w.points)
+    if (p.ok)
+      for (int n = 0; n < 3; ++n) largest[n] = std::max(largest[n], p.chamber_stretch[n]);
+  WorkspacePeakMaps maps;
+  fem::parallel_tasks(3, [&](int n) {
+    fem::RraSceneSpec rra;
+    rra.design = arm.design.segments[n].actuator;
+    rra.tube_material = arm.tube_material;
+    rra.ring_material = arm.ring_material;
+    rra.mesh_level = rra_mesh_level;
+    rra.peak_averaging_radius_mm = averaging_radius_mm;
+    maps.segment[n] = fem::calibrate_rra_to_stretch(rra, largest[n], max_pressure_kPa);
+  });
+  for (WorkspacePoint& p : w.points) {
+    if (!p.ok) continue;
+    p.peak_stretch = 1, p.peak_segment = 0, p.peak_extrapolated = false;
+    for (int n = 0; n < 3; ++n) {
+      const fem::RraCalibration::Peaks peaks = maps.segment[n].peaks_at(p.chamber_stretch[n]);
+      if (peaks.stretch > p.peak_stretch || p.peak_segment == 0)
+        p.peak_stretch = peaks.stretch, p.peak_segment = n + 1, p.peak_extrapolated = peaks.extrapolated;
+    }
+  }
+  maps.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return maps;
 }
 
 }  // namespace softarm::studies

@@ -11,6 +11,11 @@
 // Its size: the extent (the box of the reached tips) and the occupied volume, the volume of the cubes
 // of edge `voxel_mm` holding a reached tip: a lower estimate of the reachable volume at that
 // resolution, which grows with the samples until each cube inside is hit.
+//
+// Its peak stretch (judge_workspace_peaks): in each pose, each segment's largest chamber-axis stretch
+// (fem/scenes/chamber_stretch.hpp) read through that segment's lone-RRA FEM map to the tube's local
+// peak principal stretch, averaged over the criteria's ball (fem/scenes/rra_calibration.hpp): the
+// quantity burst criterion (b) and the durability strain judge, as the design's check reads it.
 #include <Eigen/Core>
 #include <array>
 #include <optional>
@@ -18,6 +23,8 @@
 #include <vector>
 
 #include "fem/core/parallel.hpp"
+#include "fem/materials/burst_criteria.hpp"
+#include "fem/scenes/rra_calibration.hpp"
 #include "fem/scenes/spl_pressure_cells.hpp"
 
 namespace softarm::studies {
@@ -33,6 +40,8 @@ struct WorkspaceSettings {
   /// arm that is 2.6 times the poses per second, its tips within 0.4 mm of the finer rod's
   /// (bench_workspace --interval-mm 1; docs/workspace.md): far below the cubes the volume counts.
   double rod_interval_mm = 1.0;
+  /// The arm's design, where the poses' chamber stretches are wanted (judge_workspace_peaks).
+  std::optional<fem::SplDesign> design;
 };
 
 struct WorkspacePoint {
@@ -43,6 +52,10 @@ struct WorkspacePoint {
   Eigen::Vector3d tip_axis = Eigen::Vector3d::Zero();  // the tip face's outward normal (unit)
   double tip_tilt_deg = 0;              // from hanging straight down the rest axis
   double pressure_sum_kPa = 0;
+  std::array<double, 3> chamber_stretch{1, 1, 1};  // per segment, its chambers' largest axial stretch
+  double peak_stretch = 1;              // the tube's, the largest over the segments (judge_workspace_peaks)
+  int peak_segment = 0;                 // 1–3: where it is (0: not judged)
+  bool peak_extrapolated = false;       // beyond the lone RRA's FEM path: its map extrapolated
 };
 
 struct WorkspaceResult {
@@ -57,5 +70,19 @@ struct WorkspaceResult {
 /// The workspace of `cells` at settings' samples, posed side by side on this process' threads.
 WorkspaceResult sweep_workspace(const fem::SplPressureCells& cells, const WorkspaceSettings& settings,
                                 const fem::TaskProgress& progress = {});
+
+/// Each segment's lone-RRA map from a chamber's mean axial stretch to the tube's peaks, its FEM path
+/// covering the largest chamber stretch the workspace's poses reach in that segment.
+struct WorkspacePeakMaps {
+  std::array<fem::RraCalibration, 3> segment;
+  double seconds = 0;
+};
+
+/// Fills every reached point's peak stretch from its chamber stretches (the sweep's, with a design) on
+/// the maps of `arm`'s segments (its design and materials; the RRA FEM on `rra_mesh_level`, the peaks
+/// averaged over `averaging_radius_mm`), the lone RRAs' paths at most `max_pressure_kPa`.
+WorkspacePeakMaps judge_workspace_peaks(WorkspaceResult& workspace, const fem::SplSceneSpec& arm,
+                                        double max_pressure_kPa, int rra_mesh_level = 1,
+                                        double averaging_radius_mm = fem::kDefaultPeakAveragingRadius_mm);
 
 }  // namespace softarm::studies

@@ -219,8 +219,27 @@ TEST_CASE("The short SPL's pressure cells: the arm's own cells on their rays, cl
     REQUIRE(rest.ok);
     CHECK((w.points[0].tip_mm - rest.position.back()).norm() < 1e-12);
     CHECK(w.occupied_volume_mm3 > 0);
-    // The same tips on a second sweep (the poses run side by side).
-    const studies::WorkspaceResult again = studies::sweep_workspace(cells, settings);
+    // The same tips on a second sweep (the poses run side by side), this one with the chambers' stretch.
+    settings.design = test::short_spl().design;
+    studies::WorkspaceResult again = studies::sweep_workspace(cells, settings);
     for (std::size_t i = 0; i < w.points.size(); ++i) CHECK(again.points[i].tip_mm == w.points[i].tip_mm);
+    // The tube's peaks: at rest (no gravity) the chambers are unstretched and so is the tube; the lone
+    // RRAs' FEM paths cover every pose (no map read beyond them), and every pose stretches the tube.
+    const studies::WorkspacePeakMaps maps = studies::judge_workspace_peaks(again, test::short_spl(), test::kShortSplPeak_kPa);
+    CHECK(again.points[0].chamber_stretch[1] == Approx(1).margin(1e-9));
+    CHECK(again.points[0].peak_stretch == Approx(1).margin(1e-3));
+    for (const studies::WorkspacePoint& p : again.points) {
+      REQUIRE(p.ok);
+      CHECK_FALSE(p.peak_extrapolated);
+      REQUIRE(p.peak_segment >= 1);
+      CHECK(p.peak_stretch >= 1 - 1e-3);
+    }
+    const studies::WorkspacePoint& all = again.points[511];
+    INFO("all chambers at 150 kPa: chamber stretches " << all.chamber_stretch[0] << ", " << all.chamber_stretch[1]
+         << ", " << all.chamber_stretch[2] << "; peak " << all.peak_stretch << " in segment " << all.peak_segment
+         << "; the lone RRAs' paths to " << maps.segment[0].last_pressure_kPa << ", " << maps.segment[1].last_pressure_kPa
+         << ", " << maps.segment[2].last_pressure_kPa << " kPa");
+    CHECK(all.peak_stretch > 1.05);
+    CHECK(all.peak_stretch > again.points[1].peak_stretch);  // chamber 1 alone at 150 kPa
   }
 }

@@ -1,5 +1,6 @@
 #include "engine/workspace/workspace_command.hpp"
 
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 
@@ -21,15 +22,18 @@ void write_points_csv(const std::string& dir, const studies::WorkspaceResult& w)
   std::ofstream csv = open_output_file(dir, "points.csv");
   csv << std::setprecision(10);
   for (int k = 1; k <= 9; ++k) csv << "p" << k << "_kPa,";
-  csv << "reached,tip_x_mm,tip_y_mm,tip_z_mm,axis_x,axis_y,axis_z,tip_tilt_deg,pressure_sum_kPa,why\n";
+  csv << "reached,tip_x_mm,tip_y_mm,tip_z_mm,axis_x,axis_y,axis_z,tip_tilt_deg,chamber_stretch_1,chamber_stretch_2,"
+         "chamber_stretch_3,peak_stretch,peak_segment,peak_extrapolated,pressure_sum_kPa,why\n";
   for (const studies::WorkspacePoint& p : w.points) {
     for (double x : p.pressure_kPa) csv << x << ",";
     csv << (p.ok ? 1 : 0);
     if (p.ok)
       csv << "," << p.tip_mm.x() << "," << p.tip_mm.y() << "," << p.tip_mm.z() << "," << p.tip_axis.x() << ","
-          << p.tip_axis.y() << "," << p.tip_axis.z() << "," << p.tip_tilt_deg;
+          << p.tip_axis.y() << "," << p.tip_axis.z() << "," << p.tip_tilt_deg << "," << p.chamber_stretch[0] << ","
+          << p.chamber_stretch[1] << "," << p.chamber_stretch[2] << "," << p.peak_stretch << "," << p.peak_segment
+          << "," << (p.peak_extrapolated ? 1 : 0);
     else
-      csv << ",,,,,,,";
+      csv << ",,,,,,,,,,,,,";
     csv << "," << p.pressure_sum_kPa << "," << csv_text(p.why) << "\n";
   }
 }
@@ -42,6 +46,7 @@ void write_points_vtu(const std::string& dir, const studies::WorkspaceResult& w)
   fields.push_back({"pressure_sum_kPa", 1, {}});
   fields.push_back({"tip_tilt_deg", 1, {}});
   fields.push_back({"tip_axis", 3, {}});
+  fields.push_back({"peak_stretch", 1, {}});
   for (const studies::WorkspacePoint& p : w.points) {
     if (!p.ok) continue;
     tips.push_back(p.tip_mm);
@@ -49,6 +54,7 @@ void write_points_vtu(const std::string& dir, const studies::WorkspaceResult& w)
     fields[9].values.push_back(p.pressure_sum_kPa);
     fields[10].values.push_back(p.tip_tilt_deg);
     fields[11].values.insert(fields[11].values.end(), {p.tip_axis.x(), p.tip_axis.y(), p.tip_axis.z()});
+    fields[12].values.push_back(p.peak_stretch);
   }
   fem::write_point_cloud_vtu(dir + "/workspace.vtu", tips, fields);
 }
@@ -62,6 +68,31 @@ std::pair<int, int> not_reached(const studies::WorkspaceResult& w) {
   for (const studies::WorkspacePoint& p : w.points)
     if (!p.ok) ++(p.why.find("beyond where its cells reached") != std::string::npos ? beyond : other);
   return {beyond, other};
+}
+
+/// The largest peak stretch of the tube over the reached poses, where it is, and how many poses read
+/// the lone RRAs' maps beyond their FEM paths.
+nlohmann::json peaks_json(const studies::WorkspaceResult& w, const studies::WorkspacePeakMaps& maps,
+                          const fem::Material& tube) {
+  const studies::WorkspacePoint* top = nullptr;
+  int extrapolated = 0;
+  for (const studies::WorkspacePoint& p : w.points) {
+    if (!p.ok) continue;
+    if (!top || p.peak_stretch > top->peak_stretch) top = &p;
+    extrapolated += p.peak_extrapolated ? 1 : 0;
+  }
+  nlohmann::json j = {{"poses_extrapolated", extrapolated}, {"maps_seconds", maps.seconds}};
+  // The stretch the tube's law was fitted to (null where its elongation at break is unknown).
+  const double trusted = fem::trusted_stretch_limit(tube);
+  j["tube_trusted_stretch"] = std::isfinite(trusted) ? nlohmann::json(trusted) : nlohmann::json(nullptr);
+  if (top) {
+    j["largest"] = top->peak_stretch;
+    j["segment"] = top->peak_segment;
+    j["pressures_kPa"] = top->pressure_kPa;
+  }
+  j["rra_paths_kPa"] = nlohmann::json::array();
+  for (const fem::RraCalibration& c : maps.segment) j["rra_paths_kPa"].push_back(c.last_pressure_kPa);
+  return j;
 }
 
 nlohmann::json summary_json(const WorkspaceOptions& o, const fem::SplPressureCells& cells,
@@ -110,7 +141,7 @@ CLI::App* add_workspace_command(CLI::App& app, WorkspaceOptions& o) {
       ->check(finite_in(0.1, 1000, "mm"))
       ->capture_default_str();
   ws->add_option("--colour-by", o.colour_by, "the report's colouring")
-      ->check(CLI::IsMember({"pressure_sum", "tip_tilt"}))
+      ->check(CLI::IsMember({"pressure_sum", "tip_tilt", "peak_stretch"}))
       ->capture_default_str();
   return ws;
 }
@@ -131,10 +162,14 @@ int run_workspace(const WorkspaceOptions& o) {
   settings.samples = o.samples;
   settings.payload_kg = o.payload_kg;
   settings.voxel_mm = o.voxel_mm;
-  const studies::WorkspaceResult w = studies::sweep_workspace(cells, settings, studies::task_progress(std::cout, "poses"));
+  settings.design = config.spl.design;
+  studies::WorkspaceResult w = studies::sweep_workspace(cells, settings, studies::task_progress(std::cout, "poses"));
+  const studies::WorkspacePeakMaps maps = studies::judge_workspace_peaks(w, config.spl, o.max_pressure_kPa);
   write_points_csv(o.output, w);
   write_points_vtu(o.output, w);
-  write_json_file(o.output, "summary.json", summary_json(o, cells, w));
+  nlohmann::json summary = summary_json(o, cells, w);
+  summary["peak_stretch"] = peaks_json(w, maps, config.spl.tube_material);
+  write_json_file(o.output, "summary.json", summary);
   write_workspace_report(o.output + "/report.html", w, o.colour_by, o.scene);
   std::cout << std::fixed << std::setprecision(1) << "workspace: " << w.reached << " of " << w.points.size()
             << " poses reached (cells " << cells.seconds << " s; poses " << std::setprecision(2) << w.pose_seconds
@@ -144,6 +179,11 @@ int run_workspace(const WorkspaceOptions& o) {
               << w.lower_mm.y() << " to " << w.upper_mm.y() << ", z " << w.lower_mm.z() << " to " << w.upper_mm.z()
               << " mm; occupied volume " << std::setprecision(2) << w.occupied_volume_mm3 * 1e-6 << " L at "
               << o.voxel_mm << " mm cubes\n";
+  if (summary["peak_stretch"].contains("largest"))
+    std::cout << std::setprecision(3) << "  the tube's peak stretch: up to "
+              << summary["peak_stretch"]["largest"].get<double>() << " (segment "
+              << summary["peak_stretch"]["segment"].get<int>() << "; the law is fitted to "
+              << summary["peak_stretch"]["tube_trusted_stretch"].dump() << ")\n";
   if (const auto [beyond, other] = not_reached(w); beyond + other > 0) {
     std::cout << "  not reached: " << beyond << " beyond where the cells reached, " << other << " without an equilibrium";
     if (beyond > 0) std::cout << "; the cells' stops: " << cells.rays.front().notes;

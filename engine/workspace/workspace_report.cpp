@@ -22,9 +22,26 @@ constexpr std::array<Projection, 3> kProjections = {{
     {"Seen from the side (y-z)", 1, 2, "y (mm)", "z (mm, shoulder up)"},
 }};
 
-double quantity(const studies::WorkspacePoint& p, const std::string& colour_by) {
-  return colour_by == "tip_tilt" ? p.tip_tilt_deg : p.pressure_sum_kPa;
+/// A quantity the points can be coloured by: its name in the legend, its unit, its value.
+struct Colouring {
+  const char* key;
+  const char* name;
+  const char* unit;
+  double (*value)(const studies::WorkspacePoint&);
+};
+constexpr std::array<Colouring, 3> kColourings = {{
+    {"pressure_sum", "pressure sum ", " kPa", [](const studies::WorkspacePoint& p) { return p.pressure_sum_kPa; }},
+    {"tip_tilt", "tip tilt ", "°", [](const studies::WorkspacePoint& p) { return p.tip_tilt_deg; }},
+    {"peak_stretch", "tube's peak stretch ", "", [](const studies::WorkspacePoint& p) { return p.peak_stretch; }},
+}};
+
+const Colouring& colouring(const std::string& key) {
+  for (const Colouring& c : kColourings)
+    if (key == c.key) return c;
+  return kColourings.front();
 }
+
+double quantity(const studies::WorkspacePoint& p, const std::string& colour_by) { return colouring(colour_by).value(p); }
 
 /// The band edges: the quantity's quartiles over the reached points.
 std::array<double, 5> band_edges(const studies::WorkspaceResult& w, const std::string& colour_by) {
@@ -41,8 +58,7 @@ std::array<double, 5> band_edges(const studies::WorkspaceResult& w, const std::s
 std::string projection_svg(const studies::WorkspaceResult& w, const Projection& view, const std::string& colour_by,
                            const std::array<double, 5>& edges) {
   static const std::array<const char*, 4> colours = {"#2c7bb6", "#abd9e9", "#fdae61", "#d7191c"};
-  const std::string unit = colour_by == "tip_tilt" ? "°" : " kPa";
-  const std::string name = colour_by == "tip_tilt" ? "tip tilt " : "pressure sum ";
+  const std::string unit = colouring(colour_by).unit, name = colouring(colour_by).name;
   report::LinePlot plot;
   plot.title = view.title;
   plot.x_label = view.x_label;
@@ -85,6 +101,14 @@ void write_workspace_report(const std::string& path, const studies::WorkspaceRes
       {"occupied volume (L)", format_number(w.occupied_volume_mm3 * 1e-6)},
       {"poses per second", format_number(w.poses_per_second)},
   };
+  if (w.reached > 0) {
+    const auto top = std::max_element(w.points.begin(), w.points.end(), [](const auto& a, const auto& b) {
+      return (a.ok ? a.peak_stretch : 0.0) < (b.ok ? b.peak_stretch : 0.0);
+    });
+    if (top->peak_segment > 0)
+      rows.push_back({"largest peak stretch of the tube (segment)",
+                      format_number(top->peak_stretch) + " (" + std::to_string(top->peak_segment) + ")"});
+  }
   doc.table({"quantity", "value"}, rows, "The workspace's size and cost (summary.json holds the same)");
   doc.write(path);
 }

@@ -85,4 +85,21 @@ RraCalibration::Peaks RraCalibration::peaks_at(double l) const {
   return out;
 }
 
+RraCalibration calibrate_rra_to_stretch(RraSceneSpec spec, double stretch, double max_pressure_kPa) {
+  const FibreLaw law(*spec.tube_material.law);
+  const double target_mm = 1.25 * (stretch - 1) * spec.design.length_mm;
+  double lo = 0, hi = max_pressure_kPa;
+  const double at_max = rod_rra_extension_mm(spec.design, law, hi, 1.0);
+  if (std::isfinite(at_max) && at_max > target_mm) {
+    for (int it = 0; it < 40; ++it) {  // bisection: the extension grows with the pressure
+      const double mid = 0.5 * (lo + hi), e = rod_rra_extension_mm(spec.design, law, mid, 1.0);
+      (std::isfinite(e) && e < target_mm ? lo : hi) = mid;
+    }
+  }
+  spec.path = PressurePathSpec{};
+  spec.path.max_pressure_kPa = std::max(hi, 0.05 * max_pressure_kPa);
+  for (int k = 1; k <= 8; ++k) spec.path.output_pressures_kPa.push_back(spec.path.max_pressure_kPa * k / 8);
+  return calibrate_rra(spec);
+}
+
 }  // namespace softarm::fem

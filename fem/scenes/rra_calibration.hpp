@@ -46,6 +46,16 @@ struct RraCalibration {
 /// Runs the RRA FEM scene and fits c(p) at its output pressures.
 RraCalibration calibrate_rra(const RraSceneSpec& fem_spec);
 
+/// calibrate_rra on `spec` (its design, materials, mesh and averaging radius; its path replaced) with
+/// the lone RRA's path far enough to cover the mean axial stretch `stretch` its actuators reach in a
+/// 3CA, with a 25 % margin on the strain: up to the pressure at which the uncalibrated rod extends the
+/// lone RRA that far (bisection; the rod extends less than the FEM, so the FEM covers the stretch),
+/// at most `max_pressure_kPa` and at least 5 % of it, outputs every eighth of it. The free RRA
+/// stretches far more than an embedded one at the same pressure (thesis RRA: λ̄ = 1.40 at 172 kPa,
+/// while the 3CA's chambers reach 1.42 at 344.7 kPa), so the path stops well below the working
+/// pressure, where a thin-walled free RRA would balloon for reasons the 3CA does not share.
+RraCalibration calibrate_rra_to_stretch(RraSceneSpec spec, double stretch, double max_pressure_kPa);
+
 /// The rod model's extension of the lone RRA at pressure p with force factor c, mm.
 double rod_rra_extension_mm(const RraDesign& design, const FibreLaw& tube, double pressure_kPa, double factor,
                             int nodes = 41);
