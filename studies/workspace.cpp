@@ -6,7 +6,6 @@
 #include <set>
 #include <tuple>
 
-#include "fem/core/parallel.hpp"
 #include "fem/scenes/chamber_stretch.hpp"
 
 namespace softarm::studies {
@@ -108,33 +107,15 @@ WorkspaceResult sweep_workspace(const fem::SplPressureCells& cells, const Worksp
   return out;
 }
 
-WorkspacePeakMaps judge_workspace_peaks(WorkspaceResult& w, const fem::SplSceneSpec& arm, double max_pressure_kPa,
+fem::TubePeakMaps judge_workspace_peaks(WorkspaceResult& w, const fem::SplSceneSpec& arm, double max_pressure_kPa,
                                         int rra_mesh_level, double averaging_radius_mm) {
-  const auto t0 = std::chrono::steady_clock::now();
   std::array<double, 3> largest{1, 1, 1};
   for (const WorkspacePoint& p : w.points)
     if (p.ok)
       for (int n = 0; n < 3; ++n) largest[n] = std::max(largest[n], p.chamber_stretch[n]);
-  WorkspacePeakMaps maps;
-  fem::parallel_tasks(3, [&](int n) {
-    fem::RraSceneSpec rra;
-    rra.design = arm.design.segments[n].actuator;
-    rra.tube_material = arm.tube_material;
-    rra.ring_material = arm.ring_material;
-    rra.mesh_level = rra_mesh_level;
-    rra.peak_averaging_radius_mm = averaging_radius_mm;
-    maps.segment[n] = fem::calibrate_rra_to_stretch(rra, largest[n], max_pressure_kPa);
-  });
-  for (WorkspacePoint& p : w.points) {
-    if (!p.ok) continue;
-    p.peak_stretch = 1, p.peak_segment = 0, p.peak_extrapolated = false;
-    for (int n = 0; n < 3; ++n) {
-      const fem::RraCalibration::Peaks peaks = maps.segment[n].peaks_at(p.chamber_stretch[n]);
-      if (peaks.stretch > p.peak_stretch || p.peak_segment == 0)
-        p.peak_stretch = peaks.stretch, p.peak_segment = n + 1, p.peak_extrapolated = peaks.extrapolated;
-    }
-  }
-  maps.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const fem::TubePeakMaps maps = fem::tube_peak_maps(arm, largest, max_pressure_kPa, rra_mesh_level, averaging_radius_mm);
+  for (WorkspacePoint& p : w.points)
+    if (p.ok) p.peak = maps.at(p.chamber_stretch);
   return maps;
 }
 

@@ -14,8 +14,7 @@
 //
 // Its peak stretch (judge_workspace_peaks): in each pose, each segment's largest chamber-axis stretch
 // (fem/scenes/chamber_stretch.hpp) read through that segment's lone-RRA FEM map to the tube's local
-// peak principal stretch, averaged over the criteria's ball (fem/scenes/rra_calibration.hpp): the
-// quantity burst criterion (b) and the durability strain judge, as the design's check reads it.
+// peak principal stretch, averaged over the criteria's ball (fem/scenes/tube_peaks.hpp).
 #include <Eigen/Core>
 #include <array>
 #include <optional>
@@ -23,8 +22,7 @@
 #include <vector>
 
 #include "fem/core/parallel.hpp"
-#include "fem/materials/burst_criteria.hpp"
-#include "fem/scenes/rra_calibration.hpp"
+#include "fem/scenes/tube_peaks.hpp"
 #include "fem/scenes/spl_pressure_cells.hpp"
 
 namespace softarm::studies {
@@ -53,9 +51,7 @@ struct WorkspacePoint {
   double tip_tilt_deg = 0;              // from hanging straight down the rest axis
   double pressure_sum_kPa = 0;
   std::array<double, 3> chamber_stretch{1, 1, 1};  // per segment, its chambers' largest axial stretch
-  double peak_stretch = 1;              // the tube's, the largest over the segments (judge_workspace_peaks)
-  int peak_segment = 0;                 // 1–3: where it is (0: not judged)
-  bool peak_extrapolated = false;       // beyond the lone RRA's FEM path: its map extrapolated
+  fem::TubePeak peak;                   // the tube's peak stretch (judge_workspace_peaks; segment 0: not judged)
 };
 
 struct WorkspaceResult {
@@ -71,17 +67,10 @@ struct WorkspaceResult {
 WorkspaceResult sweep_workspace(const fem::SplPressureCells& cells, const WorkspaceSettings& settings,
                                 const fem::TaskProgress& progress = {});
 
-/// Each segment's lone-RRA map from a chamber's mean axial stretch to the tube's peaks, its FEM path
-/// covering the largest chamber stretch the workspace's poses reach in that segment.
-struct WorkspacePeakMaps {
-  std::array<fem::RraCalibration, 3> segment;
-  double seconds = 0;
-};
-
 /// Fills every reached point's peak stretch from its chamber stretches (the sweep's, with a design) on
-/// the maps of `arm`'s segments (its design and materials; the RRA FEM on `rra_mesh_level`, the peaks
-/// averaged over `averaging_radius_mm`), the lone RRAs' paths at most `max_pressure_kPa`.
-WorkspacePeakMaps judge_workspace_peaks(WorkspaceResult& workspace, const fem::SplSceneSpec& arm,
+/// the maps of `arm`'s segments (fem/scenes/tube_peaks.hpp), each lone RRA's path covering the largest
+/// chamber stretch of its segment over the poses and at most `max_pressure_kPa`; returns the maps.
+fem::TubePeakMaps judge_workspace_peaks(WorkspaceResult& workspace, const fem::SplSceneSpec& arm,
                                         double max_pressure_kPa, int rra_mesh_level = 1,
                                         double averaging_radius_mm = fem::kDefaultPeakAveragingRadius_mm);
 

@@ -2,7 +2,8 @@
 // its cells on level 1's layers: on the rays' own directions, turned or mirrored onto other chambers,
 // the pressure cells give the tables and the pose of the arm's own cells run at those pressures; off
 // them, the interpolation's error is bounded here on the grid of one division (the coarsest); and
-// reach (engine/workspace/reach.hpp) on them finds again the tip of poses at random pressures. One
+// reach (engine/workspace/reach.hpp) on them finds again the tip of poses at random pressures, and the
+// payload margin there; the chambers' stretch in a pose is checked against the posed fibres'. One
 // test case of sections: the cells (a minute and a half) are made once per process, and ctest runs
 // each test case in its own.
 #include <catch2/catch.hpp>
@@ -183,6 +184,39 @@ TEST_CASE("The short SPL's pressure cells: the arm's own cells on their rays, cl
       CHECK((again.position.back() - r.solutions.front().tip_mm).norm() < 1e-9);
     }
   }
+  SECTION("The payload margin at a target: the heaviest tip mass held there, whatever mass it starts from") {
+    // The short arm hanging under gravity (its fixture has none), a target its tip reaches with 0.05 kg
+    // when every segment bends the same way at three quarters of the bound.
+    SplPressureCells hanging = cells;
+    hanging.rays.front().rod.gravity_m_s2 = Eigen::Vector3d(0, 0, -9.81);
+    const std::array<double, 9> p = {0, 110, 110, 0, 110, 110, 0, 110, 110};
+    const SpatialCellRodState forward = pose_at_pressures(hanging, p, nullptr, 0.05);
+    REQUIRE(forward.ok);
+    const engine::ReachTarget target{"posed", forward.position.back(), {}};
+    engine::ReachSettings light = kFourStarts;
+    light.payload_kg = 0.05;
+    const engine::ReachResult found = engine::reach(hanging, target, light);
+    REQUIRE(found.reachable);
+    const engine::PayloadMargin margin = engine::payload_margin(hanging, target, light, found);
+    INFO("margin " << margin.margin_kg << " kg over " << margin.payload_kg << " kg (" << margin.searches
+                   << " searches, " << margin.seconds << " s)");
+    CHECK_FALSE(margin.at_least);  // measured: 2.2 kg more, a bracket closed well inside its 5 kg
+    CHECK(margin.margin_kg > 0.05);
+    // The heaviest mass's pressures, posed forward, hold the tip on the target, within the bounds.
+    const SpatialCellRodState heavy = pose_at_pressures(hanging, margin.heaviest.pressure_kPa, nullptr,
+                                                        margin.payload_kg + margin.margin_kg);
+    REQUIRE(heavy.ok);
+    CHECK((heavy.position.back() - target.position_mm).norm() <= light.tolerance_mm);
+    for (int k = 0; k < 9; ++k) CHECK(margin.heaviest.pressure_kPa[k] <= segment_reach_kPa(hanging, k / 3) + 1e-9);
+    // The same heaviest mass from a target reached with half the margin more.
+    engine::ReachSettings heavier = light;
+    heavier.payload_kg = margin.payload_kg + 0.5 * margin.margin_kg;
+    const engine::PayloadMargin again =
+        engine::payload_margin(hanging, target, heavier, engine::reach(hanging, target, heavier));
+    INFO("from " << *heavier.payload_kg << " kg: margin " << again.margin_kg << " kg");
+    CHECK(again.payload_kg + again.margin_kg ==
+          Approx(margin.payload_kg + margin.margin_kg).margin(0.05 * margin.margin_kg + 0.02));
+  }
   SECTION("reach says a target beyond the arm is unreachable and gives the nearest point") {
     engine::ReachTarget target;
     target.position_mm = {0, 0, 300};  // above the shoulder (the arm hangs from z ≈ 110 mm)
@@ -225,21 +259,21 @@ TEST_CASE("The short SPL's pressure cells: the arm's own cells on their rays, cl
     for (std::size_t i = 0; i < w.points.size(); ++i) CHECK(again.points[i].tip_mm == w.points[i].tip_mm);
     // The tube's peaks: at rest (no gravity) the chambers are unstretched and so is the tube; the lone
     // RRAs' FEM paths cover every pose (no map read beyond them), and every pose stretches the tube.
-    const studies::WorkspacePeakMaps maps = studies::judge_workspace_peaks(again, test::short_spl(), test::kShortSplPeak_kPa);
+    const TubePeakMaps maps = studies::judge_workspace_peaks(again, test::short_spl(), test::kShortSplPeak_kPa);
     CHECK(again.points[0].chamber_stretch[1] == Approx(1).margin(1e-9));
-    CHECK(again.points[0].peak_stretch == Approx(1).margin(1e-3));
+    CHECK(again.points[0].peak.stretch == Approx(1).margin(1e-3));
     for (const studies::WorkspacePoint& p : again.points) {
       REQUIRE(p.ok);
-      CHECK_FALSE(p.peak_extrapolated);
-      REQUIRE(p.peak_segment >= 1);
-      CHECK(p.peak_stretch >= 1 - 1e-3);
+      CHECK_FALSE(p.peak.extrapolated);
+      REQUIRE(p.peak.segment >= 1);
+      CHECK(p.peak.stretch >= 1 - 1e-3);
     }
     const studies::WorkspacePoint& all = again.points[511];
     INFO("all chambers at 150 kPa: chamber stretches " << all.chamber_stretch[0] << ", " << all.chamber_stretch[1]
-         << ", " << all.chamber_stretch[2] << "; peak " << all.peak_stretch << " in segment " << all.peak_segment
+         << ", " << all.chamber_stretch[2] << "; peak " << all.peak.stretch << " in segment " << all.peak.segment
          << "; the lone RRAs' paths to " << maps.segment[0].last_pressure_kPa << ", " << maps.segment[1].last_pressure_kPa
          << ", " << maps.segment[2].last_pressure_kPa << " kPa");
-    CHECK(all.peak_stretch > 1.05);
-    CHECK(all.peak_stretch > again.points[1].peak_stretch);  // chamber 1 alone at 150 kPa
+    CHECK(all.peak.stretch > 1.05);
+    CHECK(all.peak.stretch > again.points[1].peak.stretch);  // chamber 1 alone at 150 kPa
   }
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "engine/optimiser/optimiser.hpp"
+#include "fem/scenes/chamber_stretch.hpp"
 #include "studies/workspace.hpp"
 
 namespace softarm::engine {
@@ -16,12 +17,17 @@ struct Pose {
   bool ok = false;
   Eigen::Vector3d tip = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> centreline;
+  std::array<double, 3> chamber_stretch{1, 1, 1};
 };
 
-Pose pose(const fem::SplPressureCells& cells, const std::array<double, 9>& p, const std::optional<double>& payload) {
-  const fem::SpatialCellRodState s = fem::pose_at_pressures(cells, p, nullptr, payload);
+Pose pose(const fem::SplPressureCells& cells, const std::array<double, 9>& p, const ReachSettings& settings,
+          bool with_stretch = false) {
+  const fem::SpatialCellRodState s = fem::pose_at_pressures(cells, p, nullptr, settings.payload_kg);
   if (!s.ok) return {};
-  return {true, s.position.back(), -s.frame.back().col(2), s.position};
+  Pose out{true, s.position.back(), -s.frame.back().col(2), s.position, {1, 1, 1}};
+  if (with_stretch && settings.design)
+    out.chamber_stretch = fem::chamber_axis_stretch(*settings.design, cells.rays.front().rod, s);
+  return out;
 }
 
 double axis_error_rad(const ReachTarget& t, const Eigen::Vector3d& axis) {
@@ -73,6 +79,10 @@ std::vector<std::array<double, 9>> start_points(const fem::SplPressureCells& cel
   return starts;
 }
 
+bool reached(const ReachSolution& s, const ReachSettings& settings) {
+  return s.distance_mm <= settings.tolerance_mm && s.axis_error_deg <= settings.tolerance_deg;
+}
+
 ReachSolution solve_from(const fem::SplPressureCells& cells, const ReachTarget& target, const ReachSettings& settings,
                          const std::array<double, 9>& start, int& evaluations) {
   optimise::Problem problem;
@@ -84,7 +94,7 @@ ReachSolution solve_from(const fem::SplPressureCells& cells, const ReachTarget& 
     problem.variables.push_back(
         {names[k], optimise::VariableKind::continuous, 0.0, fem::segment_reach_kPa(cells, k / 3), {}, -1, "kPa"});
   problem.evaluate = [&](const std::vector<double>& x) {
-    const Pose s = pose(cells, as_pressures(x), settings.payload_kg);
+    const Pose s = pose(cells, as_pressures(x), settings);
     optimise::Evaluation e;
     e.ok = s.ok;
     if (!s.ok) e.failure_reason = "no equilibrium within the cells' reach";
@@ -101,7 +111,8 @@ ReachSolution solve_from(const fem::SplPressureCells& cells, const ReachTarget& 
   evaluations += r.evaluations;
   ReachSolution out;
   out.pressure_kPa = as_pressures(r.x);
-  const Pose s = pose(cells, out.pressure_kPa, settings.payload_kg);
+  const Pose s = pose(cells, out.pressure_kPa, settings, true);
+  out.chamber_stretch = s.chamber_stretch;
   out.tip_mm = s.tip;
   out.tip_axis = s.axis;
   out.centreline_mm = s.centreline;
@@ -122,13 +133,50 @@ ReachResult reach(const fem::SplPressureCells& cells, const ReachTarget& target,
   std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.distance_mm < b.distance_mm; });
   if (!found.empty() && std::isfinite(found.front().distance_mm)) out.nearest = found.front();
   for (const ReachSolution& s : found) {
-    if (!(s.distance_mm <= settings.tolerance_mm && s.axis_error_deg <= settings.tolerance_deg)) continue;
+    if (!reached(s, settings)) continue;
     const bool distinct = std::all_of(out.solutions.begin(), out.solutions.end(), [&](const ReachSolution& o) {
       return largest_difference(o.pressure_kPa, s.pressure_kPa) >= 0.05 * cells.max_pressure_kPa;
     });
     if (distinct) out.solutions.push_back(s);
   }
   out.reachable = !out.solutions.empty();
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+PayloadMargin payload_margin(const fem::SplPressureCells& cells, const ReachTarget& target, const ReachSettings& settings,
+                             const ReachResult& found, const PayloadMarginSettings& m) {
+  const auto t0 = std::chrono::steady_clock::now();
+  PayloadMargin out;
+  out.payload_kg = settings.payload_kg ? *settings.payload_kg : cells.rays.front().rod.tip_mass_kg;
+  if (!found.reachable) return out;
+  out.heaviest = found.solutions.front();
+  int evaluations = 0;
+  // Continuation from one solution: the last extra mass held and its pressures, then steps and a bisection.
+  const auto continue_from = [&](const ReachSolution& solution) {
+    ReachSettings heavier = settings;
+    double held = 0, failed = -1, step = m.first_step_kg;
+    ReachSolution at = solution;
+    while (failed < 0 || failed - held > m.resolution_kg) {
+      const double extra = failed < 0 ? std::min(held + step, m.max_extra_kg) : 0.5 * (held + failed);
+      heavier.payload_kg = out.payload_kg + extra;
+      const ReachSolution s = solve_from(cells, target, heavier, at.pressure_kPa, evaluations);
+      ++out.searches;
+      if (reached(s, heavier)) {
+        held = extra, at = s, step *= 2;
+        if (failed < 0 && held >= m.max_extra_kg) break;
+      } else {
+        failed = extra;
+      }
+    }
+    if (held > out.margin_kg) {
+      out.margin_kg = held;
+      out.at_least = failed < 0;
+      out.heaviest = at;
+    }
+  };
+  const int branches = std::min<int>(m.max_branches, static_cast<int>(found.solutions.size()));
+  for (int b = 0; b < branches; ++b) continue_from(found.solutions[b]);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

@@ -39,6 +39,7 @@ struct ReachSettings {
   double tolerance_deg = 2;
   int max_evaluations = 600;          // rod solves per start
   std::string algorithm = "nlopt:slsqp";  // engine/optimiser's names
+  std::optional<fem::SplDesign> design;  // where given, each solution's chamber stretches too
 };
 
 struct ReachSolution {
@@ -47,6 +48,7 @@ struct ReachSolution {
   double distance_mm = 0;
   double axis_error_deg = 0;          // 0 where no axis was asked for
   std::vector<Eigen::Vector3d> centreline_mm;
+  std::array<double, 3> chamber_stretch{1, 1, 1};  // per segment (fem/scenes/chamber_stretch.hpp), with a design
 };
 
 struct ReachResult {
@@ -59,5 +61,28 @@ struct ReachResult {
 };
 
 ReachResult reach(const fem::SplPressureCells& cells, const ReachTarget& target, const ReachSettings& settings);
+
+/// The payload margin at a reached target: the largest extra tip mass Δm with which the arm still puts
+/// its tip on the target (within the settings' tolerances), found by continuation in the mass from
+/// each distinct solution: the mass raised in steps that double from `first_step_kg` while a local
+/// search from the last pressures that held reaches the target, then bisected to `resolution_kg`
+/// between the last mass held and the first not. Like reachability, a margin found by local searches
+/// is evidence, not proof: a heavier mass missed may be held by pressures they did not visit.
+struct PayloadMarginSettings {
+  double first_step_kg = 0.1;
+  double resolution_kg = 0.01;
+  double max_extra_kg = 5;   // the bracket's end: a margin this large is said as "at least"
+  int max_branches = 4;      // the distinct solutions continued
+};
+struct PayloadMargin {
+  double payload_kg = 0;     // the mass the target was reached with
+  double margin_kg = 0;      // Δm held
+  bool at_least = false;     // the bracket's end still held
+  ReachSolution heaviest;    // the pressures that hold payload + margin on the target
+  int searches = 0;          // local searches run
+  double seconds = 0;
+};
+PayloadMargin payload_margin(const fem::SplPressureCells& cells, const ReachTarget& target, const ReachSettings& settings,
+                             const ReachResult& reached, const PayloadMarginSettings& margin = {});
 
 }  // namespace softarm::engine

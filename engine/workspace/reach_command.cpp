@@ -14,6 +14,7 @@
 #include "fem/core/thesis_values.hpp"
 #include "fem/io/vtu_writer.hpp"
 #include "fem/scenes/scene_config.hpp"
+#include "fem/scenes/tube_peaks.hpp"
 
 namespace softarm::engine {
 namespace {
@@ -57,12 +58,31 @@ std::vector<ReachTarget> read_tasks(ReachOptions& o) {
   return targets;
 }
 
-json solution_json(const ReachSolution& s) {
-  return {{"pressures_kPa", s.pressure_kPa}, {"tip_mm", vector_json(s.tip_mm)}, {"tip_axis", vector_json(s.tip_axis)},
-          {"distance_mm", s.distance_mm}, {"axis_error_deg", s.axis_error_deg}};
+json solution_json(const ReachSolution& s, const fem::TubePeakMaps& maps) {
+  const fem::TubePeak peak = maps.at(s.chamber_stretch);
+  return {{"pressures_kPa", s.pressure_kPa},      {"tip_mm", vector_json(s.tip_mm)},
+          {"tip_axis", vector_json(s.tip_axis)},  {"distance_mm", s.distance_mm},
+          {"axis_error_deg", s.axis_error_deg},   {"chamber_stretch", s.chamber_stretch},
+          {"peak_stretch", peak.stretch},         {"peak_segment", peak.segment},
+          {"peak_extrapolated", peak.extrapolated}};
 }
 
-void print(const ReachTarget& t, const ReachResult& r) {
+/// Each segment's largest chamber stretch over the solutions found (the peak maps' reach).
+std::array<double, 3> largest_chamber_stretch(const std::vector<ReachResult>& results,
+                                              const std::vector<PayloadMargin>& margins) {
+  std::array<double, 3> largest{1, 1, 1};
+  const auto take = [&](const ReachSolution& s) {
+    for (int n = 0; n < 3; ++n) largest[n] = std::max(largest[n], s.chamber_stretch[n]);
+  };
+  for (const ReachResult& r : results) {
+    for (const ReachSolution& s : r.solutions) take(s);
+    if (r.nearest) take(*r.nearest);
+  }
+  for (const PayloadMargin& m : margins) take(m.heaviest);
+  return largest;
+}
+
+void print(const ReachTarget& t, const ReachResult& r, const std::optional<PayloadMargin>& margin) {
   std::cout << std::fixed << std::setprecision(1) << t.name << " (" << t.position_mm.transpose() << " mm): ";
   const auto pressures = [](const ReachSolution& s) {
     std::ostringstream text;
@@ -78,6 +98,10 @@ void print(const ReachTarget& t, const ReachResult& r) {
               << " mm away, at " << r.nearest->tip_mm.transpose() << " mm (" << pressures(*r.nearest) << ")\n";
   else
     std::cout << "NOT reached: no start posed within the cells' reach\n";
+  if (margin && r.reachable)
+    std::cout << std::setprecision(2) << "  payload margin: " << (margin->at_least ? "at least " : "") << margin->margin_kg
+              << " kg more than " << margin->payload_kg << " kg (" << margin->searches << " local searches, "
+              << std::setprecision(1) << margin->seconds << " s)\n";
   std::cout.unsetf(std::ios::floatfield);
 }
 }  // namespace
@@ -105,6 +129,8 @@ CLI::App* add_reach_command(CLI::App& app, ReachOptions& o) {
   r->add_option("--algorithm", o.algorithm, "the local search (engine/optimiser's names)")
       ->check(CLI::IsMember(optimise::algorithm_names()))
       ->capture_default_str();
+  r->add_flag("!--no-payload-margin", o.payload_margin,
+              "skip each reached target's payload margin (a continuation in the tip mass, seconds per target)");
   return r;
 }
 
@@ -139,26 +165,46 @@ int run_reach(ReachOptions o) {
   settings.starts = o.starts;
   settings.tolerance_mm = o.tolerance_mm;
   settings.algorithm = o.algorithm;
+  settings.design = config.spl.design;
+  std::vector<ReachResult> results;
+  std::vector<PayloadMargin> margins;
+  for (const ReachTarget& target : targets) {
+    results.push_back(reach(cells, target, settings));
+    std::optional<PayloadMargin> margin;
+    if (o.payload_margin && results.back().reachable) margins.push_back(*(margin = payload_margin(cells, target, settings, results.back())));
+    print(target, results.back(), margin);
+  }
+  // The tube's peak stretch at every solution: each segment's lone-RRA map over what the solutions reach.
+  const fem::TubePeakMaps maps =
+      fem::tube_peak_maps(config.spl, largest_chamber_stretch(results, margins), o.max_pressure_kPa);
   json report = json::array();
   std::vector<std::vector<Eigen::Vector3d>> lines;
   fem::NamedField which{"target", 1, {}};
   bool all = true;
-  for (std::size_t i = 0; i < targets.size(); ++i) {
-    const ReachResult r = reach(cells, targets[i], settings);
-    print(targets[i], r);
+  for (std::size_t i = 0, m = 0; i < targets.size(); ++i) {
+    const ReachResult& r = results[i];
     all = all && r.reachable;
     json j = {{"name", targets[i].name}, {"target_mm", vector_json(targets[i].position_mm)}, {"reachable", r.reachable},
               {"starts", r.starts}, {"evaluations", r.evaluations}, {"seconds", r.seconds}, {"solutions", json::array()}};
     if (targets[i].axis) j["axis"] = vector_json(targets[i].axis->normalized());
     for (const ReachSolution& s : r.solutions) {
-      j["solutions"].push_back(solution_json(s));
+      j["solutions"].push_back(solution_json(s, maps));
       lines.push_back(s.centreline_mm);
       which.values.push_back(static_cast<double>(i));
     }
     if (!r.reachable && r.nearest) {
-      j["nearest"] = solution_json(*r.nearest);
+      j["nearest"] = solution_json(*r.nearest, maps);
       lines.push_back(r.nearest->centreline_mm);
       which.values.push_back(static_cast<double>(i));
+    }
+    if (o.payload_margin && r.reachable) {
+      const PayloadMargin& margin = margins[m++];
+      j["payload_margin"] = {{"margin_kg", margin.margin_kg},
+                             {"at_least", margin.at_least},
+                             {"heaviest_kg", margin.payload_kg + margin.margin_kg},
+                             {"heaviest_solution", solution_json(margin.heaviest, maps)},
+                             {"local_searches", margin.searches},
+                             {"seconds", margin.seconds}};
     }
     report.push_back(j);
   }

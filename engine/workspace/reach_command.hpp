@@ -3,8 +3,9 @@
 // `softarm reach --tasks <tasks.json>`: the chamber pressures that put the arm's tip on each target
 // (reach.hpp), on the arm's pressure cells (read from --cells where a workspace run left them, else
 // run and kept there: cells_cache.hpp). Writes reach.json (per target: reachable or not, the distinct
-// solutions' pressures, tips, axes and distances, or the nearest point found) and poses.vtu (each
-// solution's centreline, for ParaView).
+// solutions' pressures, tips, axes, distances and the tube's peak stretch, or the nearest point
+// found; for a reached target its payload margin, the extra tip mass the arm still holds there) and
+// poses.vtu (each solution's centreline, for ParaView).
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
@@ -23,6 +24,7 @@ struct ReachOptions {
   int starts = 16;
   double tolerance_mm = 0.5;
   std::string algorithm = "nlopt:slsqp";
+  bool payload_margin = true;           // --no-payload-margin: skip the margins (their continuations)
 };
 
 /// Registers the `reach` subcommand on `app`, its options bound to `options`; returns it.

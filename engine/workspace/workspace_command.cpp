@@ -30,8 +30,8 @@ void write_points_csv(const std::string& dir, const studies::WorkspaceResult& w)
     if (p.ok)
       csv << "," << p.tip_mm.x() << "," << p.tip_mm.y() << "," << p.tip_mm.z() << "," << p.tip_axis.x() << ","
           << p.tip_axis.y() << "," << p.tip_axis.z() << "," << p.tip_tilt_deg << "," << p.chamber_stretch[0] << ","
-          << p.chamber_stretch[1] << "," << p.chamber_stretch[2] << "," << p.peak_stretch << "," << p.peak_segment
-          << "," << (p.peak_extrapolated ? 1 : 0);
+          << p.chamber_stretch[1] << "," << p.chamber_stretch[2] << "," << p.peak.stretch << "," << p.peak.segment
+          << "," << (p.peak.extrapolated ? 1 : 0);
     else
       csv << ",,,,,,,,,,,,,";
     csv << "," << p.pressure_sum_kPa << "," << csv_text(p.why) << "\n";
@@ -54,7 +54,7 @@ void write_points_vtu(const std::string& dir, const studies::WorkspaceResult& w)
     fields[9].values.push_back(p.pressure_sum_kPa);
     fields[10].values.push_back(p.tip_tilt_deg);
     fields[11].values.insert(fields[11].values.end(), {p.tip_axis.x(), p.tip_axis.y(), p.tip_axis.z()});
-    fields[12].values.push_back(p.peak_stretch);
+    fields[12].values.push_back(p.peak.stretch);
   }
   fem::write_point_cloud_vtu(dir + "/workspace.vtu", tips, fields);
 }
@@ -72,22 +72,22 @@ std::pair<int, int> not_reached(const studies::WorkspaceResult& w) {
 
 /// The largest peak stretch of the tube over the reached poses, where it is, and how many poses read
 /// the lone RRAs' maps beyond their FEM paths.
-nlohmann::json peaks_json(const studies::WorkspaceResult& w, const studies::WorkspacePeakMaps& maps,
+nlohmann::json peaks_json(const studies::WorkspaceResult& w, const fem::TubePeakMaps& maps,
                           const fem::Material& tube) {
   const studies::WorkspacePoint* top = nullptr;
   int extrapolated = 0;
   for (const studies::WorkspacePoint& p : w.points) {
     if (!p.ok) continue;
-    if (!top || p.peak_stretch > top->peak_stretch) top = &p;
-    extrapolated += p.peak_extrapolated ? 1 : 0;
+    if (!top || p.peak.stretch > top->peak.stretch) top = &p;
+    extrapolated += p.peak.extrapolated ? 1 : 0;
   }
   nlohmann::json j = {{"poses_extrapolated", extrapolated}, {"maps_seconds", maps.seconds}};
   // The stretch the tube's law was fitted to (null where its elongation at break is unknown).
   const double trusted = fem::trusted_stretch_limit(tube);
   j["tube_trusted_stretch"] = std::isfinite(trusted) ? nlohmann::json(trusted) : nlohmann::json(nullptr);
   if (top) {
-    j["largest"] = top->peak_stretch;
-    j["segment"] = top->peak_segment;
+    j["largest"] = top->peak.stretch;
+    j["segment"] = top->peak.segment;
     j["pressures_kPa"] = top->pressure_kPa;
   }
   j["rra_paths_kPa"] = nlohmann::json::array();
@@ -164,7 +164,7 @@ int run_workspace(const WorkspaceOptions& o) {
   settings.voxel_mm = o.voxel_mm;
   settings.design = config.spl.design;
   studies::WorkspaceResult w = studies::sweep_workspace(cells, settings, studies::task_progress(std::cout, "poses"));
-  const studies::WorkspacePeakMaps maps = studies::judge_workspace_peaks(w, config.spl, o.max_pressure_kPa);
+  const fem::TubePeakMaps maps = studies::judge_workspace_peaks(w, config.spl, o.max_pressure_kPa);
   write_points_csv(o.output, w);
   write_points_vtu(o.output, w);
   nlohmann::json summary = summary_json(o, cells, w);

@@ -32,7 +32,7 @@ struct Colouring {
 constexpr std::array<Colouring, 3> kColourings = {{
     {"pressure_sum", "pressure sum ", " kPa", [](const studies::WorkspacePoint& p) { return p.pressure_sum_kPa; }},
     {"tip_tilt", "tip tilt ", "°", [](const studies::WorkspacePoint& p) { return p.tip_tilt_deg; }},
-    {"peak_stretch", "tube's peak stretch ", "", [](const studies::WorkspacePoint& p) { return p.peak_stretch; }},
+    {"peak_stretch", "tube's peak stretch ", "", [](const studies::WorkspacePoint& p) { return p.peak.stretch; }},
 }};
 
 const Colouring& colouring(const std::string& key) {
@@ -103,11 +103,11 @@ void write_workspace_report(const std::string& path, const studies::WorkspaceRes
   };
   if (w.reached > 0) {
     const auto top = std::max_element(w.points.begin(), w.points.end(), [](const auto& a, const auto& b) {
-      return (a.ok ? a.peak_stretch : 0.0) < (b.ok ? b.peak_stretch : 0.0);
+      return (a.ok ? a.peak.stretch : 0.0) < (b.ok ? b.peak.stretch : 0.0);
     });
-    if (top->peak_segment > 0)
+    if (top->peak.segment > 0)
       rows.push_back({"largest peak stretch of the tube (segment)",
-                      format_number(top->peak_stretch) + " (" + std::to_string(top->peak_segment) + ")"});
+                      format_number(top->peak.stretch) + " (" + std::to_string(top->peak.segment) + ")"});
   }
   doc.table({"quantity", "value"}, rows, "The workspace's size and cost (summary.json holds the same)");
   doc.write(path);
