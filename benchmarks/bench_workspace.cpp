@@ -31,7 +31,7 @@ int main(int argc, char** argv) try {
   double interval_mm = 0;
   std::vector<double> pose;
   CLI::App app{"the workspace and reach on an arm's pressure cells: poses per second, the thesis pose found again"};
-  app.add_option("scene", scene, "an spl scene config");
+  app.add_option("scene", scene, "an spl scene config or a requirements file");
   app.add_option("--cells", cells_file, "the pressure cells' file (read where it matches, else written)");
   app.add_option("--samples", samples, "poses of the workspace")->check(CLI::Range(1, 1000000));
   app.add_option("--threads", threads, "threads for the workspace's second sweep")->check(CLI::Range(1, 256));
@@ -40,9 +40,9 @@ int main(int argc, char** argv) try {
       ->default_str("none");
   app.add_option("--pose", pose, "also the tip at these nine pressures, kPa")->delimiter(',')->expected(9)->check(bench::Finite);
   if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
-  const fem::SceneConfig config = fem::load_scene_config(scene);
+  const engine::ArmInput arm = engine::read_arm_input(scene);
   const fem::SplPressureCells cells = engine::cached_pressure_cells(
-      scene, config, fem::thesis::kWorkingPressure_kPa, 1, cells_file, std::cout);
+      arm, arm.max_pressure_kPa.value_or(fem::thesis::kWorkingPressure_kPa), 1, cells_file, std::cout);
   if (!cells.failure.empty()) {
     std::cout << "no cells: " << cells.failure << "\n";
     return 1;

@@ -14,6 +14,8 @@
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
+#include "engine/workspace/arm_input.hpp"
+#include "fem/mesh/tca_design.hpp"
 
 namespace {
 
@@ -431,6 +433,10 @@ TEST_CASE("workspace and reach refuse bad input with the option or field named, 
       {"reach -o " + out + " --tasks " + write_config("tasks_bad.json", R"({"scene": "x.json", "targets": [{"name": "cup", "position_mm": [1, 2]}]})"),
        "targets[0].position_mm"},
       {"reach -o " + out + " --tasks " + write_config("tasks_typo.json", R"({"scene": "x.json", "targetz": []})"), "targetz"},
+      {"workspace " + spl + " -o " + out + " --design " + spl, "--design"},  // a design's optimum with a scene
+      {"workspace " + std::string(SOFTARM_SOURCE_DIR) + "/configs/thesis_requirements.json -o " + out + " --design " +
+           write_config("summary_bad.json", R"({"optimum": {"ring_count": 300}})"),
+       "optimum"},
   };
   for (const auto& [args, field] : cases) {
     const auto r = run_softarm(args);
@@ -439,4 +445,33 @@ TEST_CASE("workspace and reach refuse bad input with the option or field named, 
     CHECK(r.output.find(field) != std::string::npos);
   }
   CHECK_FALSE(std::filesystem::exists(out));  // nothing written
+}
+
+TEST_CASE("workspace and reach pose a requirements file's arm: its baseline, or a design run's optimum", "[cli][workspace]") {
+  const std::string requirements = std::string(SOFTARM_SOURCE_DIR) + "/configs/thesis_requirements.json";
+  const softarm::engine::ArmInput baseline = softarm::engine::read_arm_input(requirements);
+  // The requirements' bound and payload; the arm hanging under gravity, as the design judges it.
+  CHECK(baseline.max_pressure_kPa == Approx(344.7));
+  CHECK(baseline.payload_kg == Approx(0.5));
+  CHECK(baseline.spl.gravity_m_s2.z() == Approx(-9.80665));
+  // The baseline is the thesis arm: the same design as the thesis' pose scene.
+  const softarm::engine::ArmInput thesis =
+      softarm::engine::read_arm_input(std::string(SOFTARM_SOURCE_DIR) + "/configs/spl_thesis_pose.json");
+  CHECK(nlohmann::json(softarm::fem::to_json(baseline.spl.design.segments[2])) ==
+        nlohmann::json(softarm::fem::to_json(thesis.spl.design.segments[2])));
+  // A design run's optimum (its summary's variables by name) replaces the baseline, and keys the cells apart.
+  nlohmann::json summary = {{"optimum",
+                             {{"wall_thickness_normalised", 0.5}, {"end_cap_thickness_normalised", 0.3}, {"ring_count", 30},
+                              {"ring_thickness_normalised", 0.45}, {"actuator_spacing_mm", 4}, {"taper_ratio", 0.6},
+                              {"tube_material", "dragon_skin_20"}, {"sheath_material", "dragon_skin_30"}}}};
+  const softarm::engine::ArmInput optimum =
+      softarm::engine::read_arm_input(requirements, write_config("summary_optimum.json", summary.dump()));
+  CHECK(optimum.spl.design.segments[0].actuator.ring_count == 30);
+  CHECK(optimum.spl.design.taper_ratio == Approx(0.6));
+  CHECK(optimum.spl.design.segments[0].actuator_spacing_mm == Approx(4));
+  CHECK(optimum.spl.tube_material.name == "dragon_skin_20");
+  CHECK(optimum.cells_key != baseline.cells_key);
+  summary["optimum"].erase("taper_ratio");
+  CHECK_THROWS_WITH(softarm::engine::read_arm_input(requirements, write_config("summary_short.json", summary.dump())),
+                    Catch::Contains("optimum.taper_ratio"));
 }

@@ -14,14 +14,13 @@ namespace softarm::engine {
 namespace {
 using nlohmann::json;
 
-/// What the cells depend on: the scene less its load, output and description, and the grid.
-json cells_key(const std::string& scene_file, double max_pressure_kPa, int divisions) {
-  json scene = fem::load_json_file(scene_file);
-  for (const char* key : {"load", "output", "description"}) scene.erase(key);
-  return {{"scene", scene},
-          {"max_pressure_kPa", max_pressure_kPa},
-          {"direction_divisions", divisions},
-          {"cell_levels", fem::kDefaultCellLevels}};
+/// What the cells depend on: the arm, and the grid.
+json cells_key(const ArmInput& arm, double max_pressure_kPa, int divisions) {
+  json key = arm.cells_key;
+  key["max_pressure_kPa"] = max_pressure_kPa;
+  key["direction_divisions"] = divisions;
+  key["cell_levels"] = fem::kDefaultCellLevels;
+  return key;
 }
 
 json cells_json(const json& key, const fem::SplPressureCells& cells) {
@@ -31,7 +30,7 @@ json cells_json(const json& key, const fem::SplPressureCells& cells) {
 }
 
 /// The cells in `j`, or none where it is not for `key` (or not readable as cells).
-std::optional<fem::SplPressureCells> read_cells(const json& j, const json& key, const fem::SceneConfig& config,
+std::optional<fem::SplPressureCells> read_cells(const json& j, const json& key, const fem::SplSceneSpec& arm,
                                                 std::string& why_not) {
   if (!j.contains("key") || j.at("key") != key) {
     why_not = "written for another arm, bound or grid";
@@ -46,8 +45,8 @@ std::optional<fem::SplPressureCells> read_cells(const json& j, const json& key, 
     for (const json& r : j.at("rays")) {
       fem::SplCells ray;
       fem::read_cell_tables(r.at("tables"), ray.rod);
-      ray.rod.gravity_m_s2 = config.spl.gravity_m_s2;
-      ray.rod.tip_mass_kg = config.spl.tip_mass_kg;
+      ray.rod.gravity_m_s2 = arm.gravity_m_s2;
+      ray.rod.tip_mass_kg = arm.tip_mass_kg;
       ray.notes = r.at("notes");
       cells.rays.push_back(std::move(ray));
     }
@@ -60,10 +59,9 @@ std::optional<fem::SplPressureCells> read_cells(const json& j, const json& key, 
 }
 }  // namespace
 
-fem::SplPressureCells cached_pressure_cells(const std::string& scene_file, const fem::SceneConfig& config,
-                                            double max_pressure_kPa, int divisions, const std::string& cells_file,
-                                            std::ostream& log) {
-  const json key = cells_key(scene_file, max_pressure_kPa, divisions);
+fem::SplPressureCells cached_pressure_cells(const ArmInput& arm, double max_pressure_kPa, int divisions,
+                                            const std::string& cells_file, std::ostream& log) {
+  const json key = cells_key(arm, max_pressure_kPa, divisions);
   if (std::filesystem::exists(cells_file)) {
     std::string why_not;
     json j;
@@ -73,7 +71,7 @@ fem::SplPressureCells cached_pressure_cells(const std::string& scene_file, const
       why_not = e.what();
     }
     if (why_not.empty())
-      if (auto cells = read_cells(j, key, config, why_not)) {
+      if (auto cells = read_cells(j, key, arm.spl, why_not)) {
         log << "cells: read from " << cells_file << " (they took " << static_cast<int>(cells->seconds) << " s)\n";
         return *cells;
       }
@@ -82,7 +80,7 @@ fem::SplPressureCells cached_pressure_cells(const std::string& scene_file, const
   log << "cells: the arm's cells along " << fem::direction_grid(divisions).size()
       << " rays of each segment's pressure space, 0 to " << max_pressure_kPa << " kPa\n"
       << std::flush;
-  fem::SplPressureCells cells = fem::spl_pressure_cells(config.spl, max_pressure_kPa, divisions, fem::kDefaultCellLevels,
+  fem::SplPressureCells cells = fem::spl_pressure_cells(arm.spl, max_pressure_kPa, divisions, fem::kDefaultCellLevels,
                                                         {}, studies::task_progress(log, "cells"));
   if (cells.failure.empty()) {
     std::ofstream out(cells_file);

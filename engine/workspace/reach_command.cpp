@@ -13,7 +13,6 @@
 #include "fem/core/json_reader.hpp"
 #include "fem/core/thesis_values.hpp"
 #include "fem/io/vtu_writer.hpp"
-#include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/tube_peaks.hpp"
 
 namespace softarm::engine {
@@ -35,7 +34,7 @@ std::vector<ReachTarget> read_tasks(ReachOptions& o) {
   const json document = fem::load_json_file(o.tasks);  // the reader keeps a reference to it
   fem::JsonReader root(document, "");
   root.string("description", "", "what the tasks are, and the arm's mounting");
-  const std::string scene = root.string("scene", "the arm's spl scene config, relative to this file");
+  const std::string scene = root.string("scene", "the arm's spl scene config or requirements file, relative to this file");
   o.scene = (std::filesystem::path(o.tasks).parent_path() / scene).string();
   if (auto payload = root.optional_number("payload_kg", fem::Range::closed(0, 10), "mass at the tip (kg)"))
     if (!o.payload_kg) o.payload_kg = payload;
@@ -107,9 +106,11 @@ void print(const ReachTarget& t, const ReachResult& r, const std::optional<Paylo
 }  // namespace
 
 CLI::App* add_reach_command(CLI::App& app, ReachOptions& o) {
-  o.max_pressure_kPa = fem::thesis::kWorkingPressure_kPa;
   CLI::App* r = app.add_subcommand("reach", "the chamber pressures that put the arm's tip on a target (inverse statics on its cells)");
-  r->add_option("scene", o.scene, "spl scene JSON file (its design, materials, gravity and tip mass)");
+  r->add_option("scene", o.scene,
+                "spl scene JSON file (its design, materials, gravity and tip mass), or a requirements file (its arm, "
+                "working pressure and payload)");
+  r->add_option("--design", o.design, "with a requirements file: a design run's summary.json, whose optimum is posed");
   r->add_option("--target", o.target_mm, "the tip's target x,y,z in mm (scene frame: shoulder up, tip at z = 0 at rest)")
       ->delimiter(',')
       ->expected(3)
@@ -117,10 +118,12 @@ CLI::App* add_reach_command(CLI::App& app, ReachOptions& o) {
   r->add_option("--axis", o.axis, "the tip's axis wanted, x,y,z (normalised)")->delimiter(',')->expected(3)->check(finite_in(-1, 1, ""));
   r->add_option("--tasks", o.tasks, "a tasks file (configs/tasks/): its scene and several named targets")
       ->check(CLI::ExistingFile);
-  r->add_option("--payload-kg", o.payload_kg, "mass at the tip (default: the scene's load.tip_mass_kg)")->check(finite_in(0, 10, "kg"));
+  r->add_option("--payload-kg", o.payload_kg, "mass at the tip (default: the tasks' or the requirements' payload, else the scene's load.tip_mass_kg)")->check(finite_in(0, 10, "kg"));
   r->add_option("--cells", o.cells, "the arm's pressure cells file (a workspace run's cells.json); default <output>/cells.json");
   r->add_option("-o,--output", o.output, "output directory")->capture_default_str();
-  r->add_option("--max-pressure-kPa", o.max_pressure_kPa, "every chamber's bound")->check(finite_in(1, 1000, "kPa"))->capture_default_str();
+  r->add_option("--max-pressure-kPa", o.max_pressure_kPa,
+                "every chamber's bound (default: the requirements' working pressure, else the thesis' 344.7)")
+      ->check(finite_in(1, 1000, "kPa"));
   r->add_option("--directions", o.divisions, "divisions of each segment's direction grid (as the workspace's)")
       ->check(CLI::Range(1, 4))
       ->capture_default_str();
@@ -140,7 +143,7 @@ int run_reach(ReachOptions o) {
     if (!o.target_mm.empty()) throw fem::InputError("--target", "given with --tasks; valid: one of the two");
     targets = read_tasks(o);
   } else {
-    if (o.scene.empty()) throw fem::InputError("scene", "missing; valid: an spl scene config (or --tasks FILE)");
+    if (o.scene.empty()) throw fem::InputError("scene", "missing; valid: an spl scene config or a requirements file (or --tasks FILE)");
     if (o.target_mm.empty()) throw fem::InputError("--target", "missing; valid: x,y,z in mm (or --tasks FILE)");
     ReachTarget t{"target", vector3(o.target_mm), {}};
     if (!o.axis.empty()) {
@@ -149,12 +152,12 @@ int run_reach(ReachOptions o) {
     }
     targets.push_back(t);
   }
-  const fem::SceneConfig config = fem::load_scene_config(o.scene);
-  if (config.scene != "spl")
-    throw fem::InputError("scene", "'" + config.scene + "': reach is an arm's; valid: an spl scene config");
+  const ArmInput arm = read_arm_input(o.scene, o.design);
+  o.max_pressure_kPa = o.max_pressure_kPa.value_or(arm.max_pressure_kPa.value_or(fem::thesis::kWorkingPressure_kPa));
+  if (!o.payload_kg) o.payload_kg = arm.payload_kg;
   prepare_output_directory(o.output, "--output");
   const std::string cells_file = o.cells.empty() ? o.output + "/cells.json" : o.cells;
-  const fem::SplPressureCells cells = cached_pressure_cells(o.scene, config, o.max_pressure_kPa, o.divisions, cells_file, std::cout);
+  const fem::SplPressureCells cells = cached_pressure_cells(arm, *o.max_pressure_kPa, o.divisions, cells_file, std::cout);
   if (!cells.failure.empty()) {
     std::cout << "reach: no cells: " << cells.failure << "\n";
     write_json_file(o.output, "reach.json", {{"failure", cells.failure}});
@@ -165,7 +168,7 @@ int run_reach(ReachOptions o) {
   settings.starts = o.starts;
   settings.tolerance_mm = o.tolerance_mm;
   settings.algorithm = o.algorithm;
-  settings.design = config.spl.design;
+  settings.design = arm.spl.design;
   std::vector<ReachResult> results;
   std::vector<PayloadMargin> margins;
   for (const ReachTarget& target : targets) {
@@ -176,7 +179,7 @@ int run_reach(ReachOptions o) {
   }
   // The tube's peak stretch at every solution: each segment's lone-RRA map over what the solutions reach.
   const fem::TubePeakMaps maps =
-      fem::tube_peak_maps(config.spl, largest_chamber_stretch(results, margins), o.max_pressure_kPa);
+      fem::tube_peak_maps(arm.spl, largest_chamber_stretch(results, margins), *o.max_pressure_kPa);
   json report = json::array();
   std::vector<std::vector<Eigen::Vector3d>> lines;
   fem::NamedField which{"target", 1, {}};
@@ -209,8 +212,8 @@ int run_reach(ReachOptions o) {
     report.push_back(j);
   }
   write_json_file(o.output, "reach.json",
-                  {{"scene", o.scene}, {"max_pressure_kPa", o.max_pressure_kPa}, {"tolerance_mm", o.tolerance_mm},
-                   {"payload_kg", o.payload_kg ? *o.payload_kg : config.spl.tip_mass_kg}, {"targets", report}});
+                  {{"scene", o.scene}, {"max_pressure_kPa", *o.max_pressure_kPa}, {"tolerance_mm", o.tolerance_mm},
+                   {"payload_kg", o.payload_kg.value_or(arm.spl.tip_mass_kg)}, {"targets", report}});
   fem::write_polyline_vtu(o.output + "/poses.vtu", lines, which);
   std::cout << "written: " << o.output << "/reach.json, poses.vtu\n";
   return all ? 0 : 1;

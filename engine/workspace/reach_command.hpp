@@ -1,5 +1,5 @@
 #pragma once
-// `softarm reach <spl scene.json> --target x,y,z [--axis x,y,z] [--payload-kg m]` and
+// `softarm reach <spl scene.json | requirements.json> --target x,y,z [--axis x,y,z] [--payload-kg m]` and
 // `softarm reach --tasks <tasks.json>`: the chamber pressures that put the arm's tip on each target
 // (reach.hpp), on the arm's pressure cells (read from --cells where a workspace run left them, else
 // run and kept there: cells_cache.hpp). Writes reach.json (per target: reachable or not, the distinct
@@ -14,12 +14,13 @@
 namespace softarm::engine {
 
 struct ReachOptions {
-  std::string scene, tasks;
+  std::string scene, tasks;             // scene: an spl scene config or a requirements file (arm_input.hpp)
+  std::string design;                   // with a requirements file: a design run's summary.json (its optimum)
   std::string output = "out/reach";
   std::string cells;                    // default: <output>/cells.json
   std::vector<double> target_mm, axis;  // 3 each where given
   std::optional<double> payload_kg;
-  double max_pressure_kPa = 0;          // set from the thesis' working pressure when registered
+  std::optional<double> max_pressure_kPa;  // default: the requirements' working pressure, else the thesis' 344.7
   int divisions = 1;
   int starts = 16;
   double tolerance_mm = 0.5;

@@ -1,5 +1,6 @@
 #include "engine/workspace/workspace_command.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -11,7 +12,6 @@
 #include "fem/core/input_error.hpp"
 #include "fem/core/thesis_values.hpp"
 #include "fem/io/vtu_writer.hpp"
-#include "fem/scenes/scene_config.hpp"
 #include "studies/progress_bar.hpp"
 #include "studies/workspace.hpp"
 
@@ -59,6 +59,42 @@ void write_points_vtu(const std::string& dir, const studies::WorkspaceResult& w)
   fem::write_point_cloud_vtu(dir + "/workspace.vtu", tips, fields);
 }
 
+/// The poses whose centrelines the run draws: rest, and the reached poses at each end of the extent in
+/// x, y and z (a pose twice only once); indices into the sweep's points.
+std::vector<std::size_t> chosen_poses(const studies::WorkspaceResult& w) {
+  std::vector<std::size_t> chosen;
+  const auto add = [&](std::size_t i) {
+    if (w.points[i].ok && std::find(chosen.begin(), chosen.end(), i) == chosen.end()) chosen.push_back(i);
+  };
+  if (!w.points.empty()) add(0);  // the first sample is rest (workspace_pressures)
+  for (int axis = 0; axis < 3; ++axis) {
+    std::size_t low = 0, high = 0;
+    bool any = false;
+    for (std::size_t i = 0; i < w.points.size(); ++i) {
+      if (!w.points[i].ok) continue;
+      if (!any || w.points[i].tip_mm[axis] < w.points[low].tip_mm[axis]) low = i;
+      if (!any || w.points[i].tip_mm[axis] > w.points[high].tip_mm[axis]) high = i;
+      any = true;
+    }
+    if (any) add(low), add(high);
+  }
+  return chosen;
+}
+
+/// The chosen poses' centrelines (posed again on the rod's own interval), each with its sample's index.
+void write_centrelines_vtu(const std::string& dir, const fem::SplPressureCells& cells, const studies::WorkspaceResult& w,
+                           const std::optional<double>& payload_kg) {
+  std::vector<std::vector<Eigen::Vector3d>> lines;
+  fem::NamedField sample{"sample", 1, {}};
+  for (std::size_t i : chosen_poses(w)) {
+    const fem::SpatialCellRodState s = fem::pose_at_pressures(cells, w.points[i].pressure_kPa, nullptr, payload_kg);
+    if (!s.ok) continue;
+    lines.push_back(s.position);
+    sample.values.push_back(static_cast<double>(i));
+  }
+  fem::write_polyline_vtu(dir + "/centrelines.vtu", lines, sample);
+}
+
 nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 /// The poses not reached: beyond the cells' reach (a segment past where a ray's cells stopped), or no
@@ -98,7 +134,7 @@ nlohmann::json peaks_json(const studies::WorkspaceResult& w, const fem::TubePeak
 nlohmann::json summary_json(const WorkspaceOptions& o, const fem::SplPressureCells& cells,
                             const studies::WorkspaceResult& w) {
   nlohmann::json j = {{"scene", o.scene},
-                      {"max_pressure_kPa", o.max_pressure_kPa},
+                      {"max_pressure_kPa", *o.max_pressure_kPa},
                       {"direction_divisions", o.divisions},
                       {"rays", cells.directions.size()},
                       {"cells_seconds", cells.seconds},
@@ -120,14 +156,17 @@ nlohmann::json summary_json(const WorkspaceOptions& o, const fem::SplPressureCel
 }  // namespace
 
 CLI::App* add_workspace_command(CLI::App& app, WorkspaceOptions& o) {
-  o.max_pressure_kPa = fem::thesis::kWorkingPressure_kPa;
   CLI::App* ws = app.add_subcommand(
       "workspace", "where the arm's tip can go: poses over all nine chamber pressures on the arm's cells (an spl scene)");
-  ws->add_option("scene", o.scene, "spl scene JSON file (its design, materials, gravity and tip mass)")->required();
+  ws->add_option("scene", o.scene,
+                 "spl scene JSON file (its design, materials, gravity and tip mass), or a requirements file (its arm, "
+                 "working pressure and payload)")
+      ->required();
+  ws->add_option("--design", o.design, "with a requirements file: a design run's summary.json, whose optimum is posed");
   ws->add_option("-o,--output", o.output, "output directory")->capture_default_str();
-  ws->add_option("--max-pressure-kPa", o.max_pressure_kPa, "every chamber's bound (default: the working pressure)")
-      ->check(finite_in(1, 1000, "kPa"))
-      ->capture_default_str();
+  ws->add_option("--max-pressure-kPa", o.max_pressure_kPa,
+                 "every chamber's bound (default: the requirements' working pressure, else the thesis' 344.7)")
+      ->check(finite_in(1, 1000, "kPa"));
   ws->add_option("--samples", o.samples, "pressure vectors posed (the 512 corners of the pressure space first)")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
@@ -135,7 +174,7 @@ CLI::App* add_workspace_command(CLI::App& app, WorkspaceOptions& o) {
                  "divisions of each segment's direction grid: (n+1)(n+2)/2 rays of cells (fem/reduced/pressure_space.hpp)")
       ->check(CLI::Range(1, 4))
       ->capture_default_str();
-  ws->add_option("--payload-kg", o.payload_kg, "mass at the tip (default: the scene's load.tip_mass_kg)")
+  ws->add_option("--payload-kg", o.payload_kg, "mass at the tip (default: the requirements' payload, else the scene's load.tip_mass_kg)")
       ->check(finite_in(0, 10, "kg"));
   ws->add_option("--voxel-mm", o.voxel_mm, "edge of the cubes the occupied volume counts")
       ->check(finite_in(0.1, 1000, "mm"))
@@ -146,13 +185,14 @@ CLI::App* add_workspace_command(CLI::App& app, WorkspaceOptions& o) {
   return ws;
 }
 
-int run_workspace(const WorkspaceOptions& o) {
-  const fem::SceneConfig config = fem::load_scene_config(o.scene);
-  if (config.scene != "spl")
-    throw fem::InputError("scene", "'" + config.scene + "': the workspace is an arm's; valid: an spl scene config");
+int run_workspace(const WorkspaceOptions& given) {
+  const ArmInput arm = read_arm_input(given.scene, given.design);
+  WorkspaceOptions o = given;  // the bound and the payload resolved: the option's, else the file's
+  o.max_pressure_kPa = given.max_pressure_kPa.value_or(arm.max_pressure_kPa.value_or(fem::thesis::kWorkingPressure_kPa));
+  if (!o.payload_kg) o.payload_kg = arm.payload_kg;
   prepare_output_directory(o.output, "--output");
   const fem::SplPressureCells cells =
-      cached_pressure_cells(o.scene, config, o.max_pressure_kPa, o.divisions, o.output + "/cells.json", std::cout);
+      cached_pressure_cells(arm, *o.max_pressure_kPa, o.divisions, o.output + "/cells.json", std::cout);
   if (!cells.failure.empty()) {
     std::cout << "workspace: no cells: " << cells.failure << "\n";
     write_json_file(o.output, "summary.json", summary_json(o, cells, {}));
@@ -162,15 +202,16 @@ int run_workspace(const WorkspaceOptions& o) {
   settings.samples = o.samples;
   settings.payload_kg = o.payload_kg;
   settings.voxel_mm = o.voxel_mm;
-  settings.design = config.spl.design;
+  settings.design = arm.spl.design;
   studies::WorkspaceResult w = studies::sweep_workspace(cells, settings, studies::task_progress(std::cout, "poses"));
-  const fem::TubePeakMaps maps = studies::judge_workspace_peaks(w, config.spl, o.max_pressure_kPa);
+  const fem::TubePeakMaps maps = studies::judge_workspace_peaks(w, arm.spl, *o.max_pressure_kPa);
   write_points_csv(o.output, w);
   write_points_vtu(o.output, w);
+  write_centrelines_vtu(o.output, cells, w, o.payload_kg);
   nlohmann::json summary = summary_json(o, cells, w);
-  summary["peak_stretch"] = peaks_json(w, maps, config.spl.tube_material);
+  summary["peak_stretch"] = peaks_json(w, maps, arm.spl.tube_material);
   write_json_file(o.output, "summary.json", summary);
-  write_workspace_report(o.output + "/report.html", w, o.colour_by, o.scene);
+  write_workspace_report(o.output + "/report.html", w, o.colour_by, arm.described);
   std::cout << std::fixed << std::setprecision(1) << "workspace: " << w.reached << " of " << w.points.size()
             << " poses reached (cells " << cells.seconds << " s; poses " << std::setprecision(2) << w.pose_seconds
             << " s, " << std::setprecision(0) << w.poses_per_second << " per second)\n";
@@ -190,7 +231,7 @@ int run_workspace(const WorkspaceOptions& o) {
     std::cout << "\n";
   }
   std::cout.unsetf(std::ios::floatfield);
-  std::cout << "written: " << o.output << "/points.csv, workspace.vtu, summary.json, report.html, cells.json\n";
+  std::cout << "written: " << o.output << "/points.csv, workspace.vtu, centrelines.vtu, summary.json, report.html, cells.json\n";
   return 0;
 }
 

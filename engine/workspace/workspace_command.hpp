@@ -1,9 +1,11 @@
 #pragma once
-// `softarm workspace <spl scene.json>`: where the arm can put its tip. The scene's design, materials,
-// gravity (its mounting: hanging from the shoulder by default) and tip mass; the arm's cells over each
+// `softarm workspace <spl scene.json | requirements.json>`: where the arm can put its tip. The arm as
+// arm_input.hpp reads it (a scene's design, materials, gravity (its mounting: hanging from the
+// shoulder by default) and tip mass; or a requirements file's arm, bound and payload); its cells over each
 // segment's pressure space (fem/scenes/spl_pressure_cells.hpp), then the poses at the workspace's
 // pressure samples (studies/workspace.hpp). Writes points.csv (pressures, tip, axis, per pose),
-// workspace.vtu (the tips as a point cloud with the pressures as fields), summary.json and report.html
+// workspace.vtu (the tips as a point cloud with the pressures as fields), centrelines.vtu (the arm at
+// rest and at the poses that bound the extent, each with its sample's index), summary.json and report.html
 // (the workspace in three projections, coloured by the quantity asked for), and cells.json, the cells
 // its next run (or `softarm reach --cells`) reads instead of running them (cells_cache.hpp).
 #include <CLI/CLI.hpp>
@@ -13,9 +15,10 @@
 namespace softarm::engine {
 
 struct WorkspaceOptions {
-  std::string scene;
+  std::string scene;                    // an spl scene config or a requirements file (arm_input.hpp)
+  std::string design;                   // with a requirements file: a design run's summary.json (its optimum)
   std::string output = "out/workspace";
-  double max_pressure_kPa = 0;          // set from the thesis' working pressure when registered
+  std::optional<double> max_pressure_kPa;  // default: the requirements' working pressure, else the thesis' 344.7
   int samples = 10000;
   int divisions = 1;                    // the direction grid's (pressure_space.hpp)
   std::optional<double> payload_kg;
