@@ -52,6 +52,10 @@ struct WorkspacePoint {
   double pressure_sum_kPa = 0;
   std::array<double, 3> chamber_stretch{1, 1, 1};  // per segment, its chambers' largest axial stretch
   fem::TubePeak peak;                   // the tube's peak stretch (judge_workspace_peaks; segment 0: not judged)
+  /// The extra tip mass the arm still holds at this tip position (engine/workspace/reach.hpp,
+  /// payload_margin), where it was computed; `at_least` where the bracket's end still held.
+  std::optional<double> payload_margin_kg;
+  bool payload_margin_at_least = false;
 };
 
 struct WorkspaceResult {

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "engine/report/html_document.hpp"
@@ -219,4 +220,21 @@ TEST_CASE("the workspace report draws the tips in three projections in Chromium"
         CHECK(svg.inked > 0.02);
     }
     CHECK(r.svgs[0].svg_title == "Seen from above (x-y)");
+    // Coloured by a payload margin computed at every third pose only: the others in grey beneath, the
+    // bands over the margins.
+    for (std::size_t i = 0; i < w.points.size(); i += 3) w.points[i].payload_margin_kg = 0.01 * static_cast<double>(i);
+    const fs::path margins = dir.path / "margins.html";
+    softarm::engine::write_workspace_report(margins.string(), w, "payload_margin", "configs/spl_thesis_pose.json");
+    const BrowserRender m = render_or_fail(margins);
+    CHECK(m.js_errors.empty());
+    REQUIRE(m.svgs.size() == 3);
+    for (const auto& svg : m.svgs) {
+        INFO(svg.describe());
+        CHECK(svg.marks > 20);
+        CHECK(svg.marks_outside == 0);
+    }
+    std::ifstream text(margins);
+    const std::string html((std::istreambuf_iterator<char>(text)), std::istreambuf_iterator<char>());
+    CHECK_THAT(html, Catch::Contains("not computed"));
+    CHECK_THAT(html, Catch::Contains("payload margin"));
 }

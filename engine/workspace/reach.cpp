@@ -83,16 +83,37 @@ bool reached(const ReachSolution& s, const ReachSettings& settings) {
   return s.distance_mm <= settings.tolerance_mm && s.axis_error_deg <= settings.tolerance_deg;
 }
 
-ReachSolution solve_from(const fem::SplPressureCells& cells, const ReachTarget& target, const ReachSettings& settings,
-                         const std::array<double, 9>& start, int& evaluations) {
+/// The nine pressures as the searches' variables: each chamber up to its segment's reach (the cells'
+/// burst where lower than P), so that the whole box has poses and a search meets no cliff of failed
+/// evaluations (on the thesis arm that took a target SLSQP missed by 133 mm from 4 starts to 64 mm).
+optimise::Problem reach_bounds(const fem::SplPressureCells& cells) {
   optimise::Problem problem;
-  // Each chamber up to its segment's reach (the cells' burst where lower than P): the whole box has
-  // poses, so the search meets no cliff of failed evaluations (on the thesis arm that took a target
-  // SLSQP missed by 133 mm from 4 starts to 64 mm).
   const std::array<const char*, 9> names = {"p1", "p2", "p3", "p4", "p5", "p6", "p7", "p8", "p9"};
   for (int k = 0; k < 9; ++k)
     problem.variables.push_back(
         {names[k], optimise::VariableKind::continuous, 0.0, fem::segment_reach_kPa(cells, k / 3), {}, -1, "kPa"});
+  return problem;
+}
+
+/// The solution at pressures p: its pose, tip, axis, distances and chamber stretches.
+ReachSolution solve_at(const fem::SplPressureCells& cells, const ReachTarget& target, const ReachSettings& settings,
+                       const std::array<double, 9>& p, int& evaluations) {
+  ReachSolution out;
+  out.pressure_kPa = p;
+  const Pose s = pose(cells, p, settings, true);
+  ++evaluations;
+  out.chamber_stretch = s.chamber_stretch;
+  out.tip_mm = s.tip;
+  out.tip_axis = s.axis;
+  out.centreline_mm = s.centreline;
+  out.distance_mm = s.ok ? (s.tip - target.position_mm).norm() : INFINITY;
+  out.axis_error_deg = s.ok ? axis_error_rad(target, s.axis) * kDeg : INFINITY;
+  return out;
+}
+
+ReachSolution solve_from(const fem::SplPressureCells& cells, const ReachTarget& target, const ReachSettings& settings,
+                         const std::array<double, 9>& start, int& evaluations) {
+  optimise::Problem problem = reach_bounds(cells);
   problem.evaluate = [&](const std::vector<double>& x) {
     const Pose s = pose(cells, as_pressures(x), settings);
     optimise::Evaluation e;
@@ -109,16 +130,7 @@ ReachSolution solve_from(const fem::SplPressureCells& cells, const ReachTarget& 
   options.x0.assign(start.begin(), start.end());
   const optimise::Result r = optimise::minimise(problem, options);
   evaluations += r.evaluations;
-  ReachSolution out;
-  out.pressure_kPa = as_pressures(r.x);
-  const Pose s = pose(cells, out.pressure_kPa, settings, true);
-  out.chamber_stretch = s.chamber_stretch;
-  out.tip_mm = s.tip;
-  out.tip_axis = s.axis;
-  out.centreline_mm = s.centreline;
-  out.distance_mm = s.ok ? (s.tip - target.position_mm).norm() : INFINITY;
-  out.axis_error_deg = s.ok ? axis_error_rad(target, s.axis) * kDeg : INFINITY;
-  return out;
+  return solve_at(cells, target, settings, as_pressures(r.x), evaluations);
 }
 }  // namespace
 
@@ -148,19 +160,18 @@ PayloadMargin payload_margin(const fem::SplPressureCells& cells, const ReachTarg
                              const ReachResult& found, const PayloadMarginSettings& m) {
   const auto t0 = std::chrono::steady_clock::now();
   PayloadMargin out;
-  out.payload_kg = settings.payload_kg ? *settings.payload_kg : cells.rays.front().rod.tip_mass_kg;
+  out.payload_kg = settings.payload_kg.value_or(cells.rays.front().rod.tip_mass_kg);
   if (!found.reachable) return out;
   out.heaviest = found.solutions.front();
-  int evaluations = 0;
-  // Continuation from one solution: the last extra mass held and its pressures, then steps and a bisection.
+  ReachSettings heavier = settings;
+  // Continuation from one solution: the extra mass last held and its pressures, the first mass not held.
   const auto continue_from = [&](const ReachSolution& solution) {
-    ReachSettings heavier = settings;
     double held = 0, failed = -1, step = m.first_step_kg;
     ReachSolution at = solution;
-    while (failed < 0 || failed - held > m.resolution_kg) {
+    while (failed < 0 || failed - held > std::max(m.resolution_kg, m.relative_resolution * held)) {
       const double extra = failed < 0 ? std::min(held + step, m.max_extra_kg) : 0.5 * (held + failed);
       heavier.payload_kg = out.payload_kg + extra;
-      const ReachSolution s = solve_from(cells, target, heavier, at.pressure_kPa, evaluations);
+      const ReachSolution s = solve_from(cells, target, heavier, at.pressure_kPa, out.evaluations);
       ++out.searches;
       if (reached(s, heavier)) {
         held = extra, at = s, step *= 2;

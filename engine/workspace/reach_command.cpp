@@ -99,7 +99,7 @@ void print(const ReachTarget& t, const ReachResult& r, const std::optional<Paylo
     std::cout << "NOT reached: no start posed within the cells' reach\n";
   if (margin && r.reachable)
     std::cout << std::setprecision(2) << "  payload margin: " << (margin->at_least ? "at least " : "") << margin->margin_kg
-              << " kg more than " << margin->payload_kg << " kg (" << margin->searches << " local searches, "
+              << " kg more than " << margin->payload_kg << " kg (" << margin->evaluations << " rod solves, "
               << std::setprecision(1) << margin->seconds << " s)\n";
   std::cout.unsetf(std::ios::floatfield);
 }
@@ -133,7 +133,7 @@ CLI::App* add_reach_command(CLI::App& app, ReachOptions& o) {
       ->check(CLI::IsMember(optimise::algorithm_names()))
       ->capture_default_str();
   r->add_flag("!--no-payload-margin", o.payload_margin,
-              "skip each reached target's payload margin (a continuation in the tip mass, seconds per target)");
+              "skip each reached target's payload margin (a search in the pressures and the tip mass from each solution)");
   return r;
 }
 
@@ -206,7 +206,8 @@ int run_reach(ReachOptions o) {
                              {"at_least", margin.at_least},
                              {"heaviest_kg", margin.payload_kg + margin.margin_kg},
                              {"heaviest_solution", solution_json(margin.heaviest, maps)},
-                             {"local_searches", margin.searches},
+                             {"searches", margin.searches},
+                             {"rod_solves", margin.evaluations},
                              {"seconds", margin.seconds}};
     }
     report.push_back(j);

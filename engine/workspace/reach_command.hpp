@@ -25,7 +25,7 @@ struct ReachOptions {
   int starts = 16;
   double tolerance_mm = 0.5;
   std::string algorithm = "nlopt:slsqp";
-  bool payload_margin = true;           // --no-payload-margin: skip the margins (their continuations)
+  bool payload_margin = true;           // --no-payload-margin: skip the margins (their searches)
 };
 
 /// Registers the `reach` subcommand on `app`, its options bound to `options`; returns it.

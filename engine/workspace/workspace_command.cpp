@@ -1,6 +1,7 @@
 #include "engine/workspace/workspace_command.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -8,9 +9,12 @@
 #include "engine/options/option_checks.hpp"
 #include "engine/report/output_files.hpp"
 #include "engine/workspace/cells_cache.hpp"
+#include "engine/workspace/reach.hpp"
 #include "engine/workspace/workspace_report.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/core/thesis_values.hpp"
+#include "fem/core/number_text.hpp"
+#include "fem/core/parallel.hpp"
 #include "fem/io/vtu_writer.hpp"
 #include "studies/progress_bar.hpp"
 #include "studies/workspace.hpp"
@@ -23,7 +27,8 @@ void write_points_csv(const std::string& dir, const studies::WorkspaceResult& w)
   csv << std::setprecision(10);
   for (int k = 1; k <= 9; ++k) csv << "p" << k << "_kPa,";
   csv << "reached,tip_x_mm,tip_y_mm,tip_z_mm,axis_x,axis_y,axis_z,tip_tilt_deg,chamber_stretch_1,chamber_stretch_2,"
-         "chamber_stretch_3,peak_stretch,peak_segment,peak_extrapolated,pressure_sum_kPa,why\n";
+         "chamber_stretch_3,peak_stretch,peak_segment,peak_extrapolated,payload_margin_kg,payload_margin_at_least,"
+         "pressure_sum_kPa,why\n";
   for (const studies::WorkspacePoint& p : w.points) {
     for (double x : p.pressure_kPa) csv << x << ",";
     csv << (p.ok ? 1 : 0);
@@ -31,9 +36,11 @@ void write_points_csv(const std::string& dir, const studies::WorkspaceResult& w)
       csv << "," << p.tip_mm.x() << "," << p.tip_mm.y() << "," << p.tip_mm.z() << "," << p.tip_axis.x() << ","
           << p.tip_axis.y() << "," << p.tip_axis.z() << "," << p.tip_tilt_deg << "," << p.chamber_stretch[0] << ","
           << p.chamber_stretch[1] << "," << p.chamber_stretch[2] << "," << p.peak.stretch << "," << p.peak.segment
-          << "," << (p.peak.extrapolated ? 1 : 0);
+          << "," << (p.peak.extrapolated ? 1 : 0) << ",";
     else
-      csv << ",,,,,,,,,,,,,";
+      csv << ",,,,,,,,,,,,,,";
+    if (p.payload_margin_kg) csv << *p.payload_margin_kg << "," << (p.payload_margin_at_least ? 1 : 0);
+    else csv << ",";
     csv << "," << p.pressure_sum_kPa << "," << csv_text(p.why) << "\n";
   }
 }
@@ -57,6 +64,58 @@ void write_points_vtu(const std::string& dir, const studies::WorkspaceResult& w)
     fields[12].values.push_back(p.peak.stretch);
   }
   fem::write_point_cloud_vtu(dir + "/workspace.vtu", tips, fields);
+}
+
+/// Poses whose payload margin a report coloured by it computes, unless told: a few minutes on the thesis arm.
+constexpr int kDefaultMarginPoses = 24;
+
+/// The payload margin at the first `count` reached poses after the corners (the sequence's, spread over
+/// the pressure space), side by side: each pose's own pressures hold its tip there with the payload, and
+/// payload_margin searches on from them (one branch).
+double margins_at_poses(const fem::SplPressureCells& cells, studies::WorkspaceResult& w, int count,
+                        const std::optional<double>& payload_kg) {
+  std::vector<std::size_t> chosen;
+  for (std::size_t i = 512; i < w.points.size() && static_cast<int>(chosen.size()) < count; ++i)
+    if (w.points[i].ok) chosen.push_back(i);
+  if (chosen.size() < static_cast<std::size_t>(count))  // a short sweep: the corners too
+    for (std::size_t i = 0; i < std::min<std::size_t>(512, w.points.size()) && static_cast<int>(chosen.size()) < count; ++i)
+      if (w.points[i].ok) chosen.push_back(i);
+  ReachSettings settings;
+  settings.payload_kg = payload_kg;
+  PayloadMarginSettings margin;
+  margin.max_branches = 1;
+  const auto t0 = std::chrono::steady_clock::now();
+  fem::parallel_tasks(
+      static_cast<int>(chosen.size()),
+      [&](int k) {
+        studies::WorkspacePoint& p = w.points[chosen[k]];
+        ReachResult here;
+        here.reachable = true;
+        ReachSolution own;
+        own.pressure_kPa = p.pressure_kPa;
+        own.tip_mm = p.tip_mm;
+        here.solutions = {own};
+        const PayloadMargin m = payload_margin(cells, {"pose", p.tip_mm, {}}, settings, here, margin);
+        p.payload_margin_kg = m.margin_kg;
+        p.payload_margin_at_least = m.at_least;
+      },
+      studies::task_progress(std::cout, "margins"));
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// The margins computed: how many, their range and median, and what they cost.
+nlohmann::json margins_json(const studies::WorkspaceResult& w, double seconds) {
+  std::vector<double> m;
+  int at_least = 0;
+  for (const studies::WorkspacePoint& p : w.points)
+    if (p.payload_margin_kg) m.push_back(*p.payload_margin_kg), at_least += p.payload_margin_at_least ? 1 : 0;
+  nlohmann::json j = {{"poses", m.size()}, {"seconds", seconds}, {"bracket_end_held", at_least}};
+  if (m.empty()) return j;
+  std::sort(m.begin(), m.end());
+  j["smallest_kg"] = m.front();
+  j["median_kg"] = m[m.size() / 2];
+  j["largest_kg"] = m.back();
+  return j;
 }
 
 /// The poses whose centrelines the run draws: rest, and the reached poses at each end of the extent in
@@ -180,8 +239,12 @@ CLI::App* add_workspace_command(CLI::App& app, WorkspaceOptions& o) {
       ->check(finite_in(0.1, 1000, "mm"))
       ->capture_default_str();
   ws->add_option("--colour-by", o.colour_by, "the report's colouring")
-      ->check(CLI::IsMember({"pressure_sum", "tip_tilt", "peak_stretch"}))
+      ->check(CLI::IsMember({"pressure_sum", "tip_tilt", "peak_stretch", "payload_margin"}))
       ->capture_default_str();
+  ws->add_option("--margin-poses", o.margin_poses,
+                 "poses whose payload margin is computed, the first reached of the sequence after the corners (a "
+                 "continuation in the tip mass each, about 40 s on the thesis arm; default 24 where coloured by it, else none)")
+      ->check(CLI::Range(0, 100000));
   return ws;
 }
 
@@ -205,11 +268,14 @@ int run_workspace(const WorkspaceOptions& given) {
   settings.design = arm.spl.design;
   studies::WorkspaceResult w = studies::sweep_workspace(cells, settings, studies::task_progress(std::cout, "poses"));
   const fem::TubePeakMaps maps = studies::judge_workspace_peaks(w, arm.spl, *o.max_pressure_kPa);
+  const int margin_poses = o.margin_poses > 0 ? o.margin_poses : o.colour_by == "payload_margin" ? kDefaultMarginPoses : 0;
+  const double margin_seconds = margin_poses > 0 ? margins_at_poses(cells, w, margin_poses, o.payload_kg) : 0.0;
   write_points_csv(o.output, w);
   write_points_vtu(o.output, w);
   write_centrelines_vtu(o.output, cells, w, o.payload_kg);
   nlohmann::json summary = summary_json(o, cells, w);
   summary["peak_stretch"] = peaks_json(w, maps, arm.spl.tube_material);
+  if (margin_poses > 0) summary["payload_margin"] = margins_json(w, margin_seconds);
   write_json_file(o.output, "summary.json", summary);
   write_workspace_report(o.output + "/report.html", w, o.colour_by, arm.described);
   std::cout << std::fixed << std::setprecision(1) << "workspace: " << w.reached << " of " << w.points.size()
@@ -223,8 +289,17 @@ int run_workspace(const WorkspaceOptions& given) {
   if (summary["peak_stretch"].contains("largest"))
     std::cout << std::setprecision(3) << "  the tube's peak stretch: up to "
               << summary["peak_stretch"]["largest"].get<double>() << " (segment "
-              << summary["peak_stretch"]["segment"].get<int>() << "; the law is fitted to "
-              << summary["peak_stretch"]["tube_trusted_stretch"].dump() << ")\n";
+              << summary["peak_stretch"]["segment"].get<int>() << "; the tube's law is fitted up to "
+              << (summary["peak_stretch"]["tube_trusted_stretch"].is_number()
+                      ? fem::number_text(summary["peak_stretch"]["tube_trusted_stretch"].get<double>())
+                      : std::string("an unknown stretch"))
+              << ")\n";
+  if (summary.contains("payload_margin") && summary["payload_margin"].contains("median_kg"))
+    std::cout << std::setprecision(2) << "  payload margin at " << summary["payload_margin"]["poses"].get<int>()
+              << " poses: " << summary["payload_margin"]["smallest_kg"].get<double>() << " to "
+              << summary["payload_margin"]["largest_kg"].get<double>() << " kg, median "
+              << summary["payload_margin"]["median_kg"].get<double>() << " kg (" << std::setprecision(0)
+              << margin_seconds << " s)\n";
   if (const auto [beyond, other] = not_reached(w); beyond + other > 0) {
     std::cout << "  not reached: " << beyond << " beyond where the cells reached, " << other << " without an equilibrium";
     if (beyond > 0) std::cout << "; the cells' stops: " << cells.rays.front().notes;

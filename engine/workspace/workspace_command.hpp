@@ -24,6 +24,7 @@ struct WorkspaceOptions {
   std::optional<double> payload_kg;
   double voxel_mm = 10;
   std::string colour_by = "pressure_sum";
+  int margin_poses = 0;                 // poses whose payload margin is computed (0: none, or 24 where coloured by it)
 };
 
 /// Registers the `workspace` subcommand on `app`, its options bound to `options`; returns it.

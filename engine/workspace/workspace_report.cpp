@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "engine/report/html_document.hpp"
 #include "engine/report/svg_plot.hpp"
@@ -29,10 +30,12 @@ struct Colouring {
   const char* unit;
   double (*value)(const studies::WorkspacePoint&);
 };
-constexpr std::array<Colouring, 3> kColourings = {{
+constexpr std::array<Colouring, 4> kColourings = {{
     {"pressure_sum", "pressure sum ", " kPa", [](const studies::WorkspacePoint& p) { return p.pressure_sum_kPa; }},
     {"tip_tilt", "tip tilt ", "°", [](const studies::WorkspacePoint& p) { return p.tip_tilt_deg; }},
     {"peak_stretch", "tube's peak stretch ", "", [](const studies::WorkspacePoint& p) { return p.peak.stretch; }},
+    {"payload_margin", "payload margin ", " kg",
+     [](const studies::WorkspacePoint& p) { return p.payload_margin_kg.value_or(std::nan("")); }},
 }};
 
 const Colouring& colouring(const std::string& key) {
@@ -47,7 +50,7 @@ double quantity(const studies::WorkspacePoint& p, const std::string& colour_by) 
 std::array<double, 5> band_edges(const studies::WorkspaceResult& w, const std::string& colour_by) {
   std::vector<double> v;
   for (const auto& p : w.points)
-    if (p.ok) v.push_back(quantity(p, colour_by));
+    if (p.ok && std::isfinite(quantity(p, colour_by))) v.push_back(quantity(p, colour_by));
   std::sort(v.begin(), v.end());
   std::array<double, 5> edges{};
   for (int k = 0; k <= 4; ++k) edges[k] = v.empty() ? 0.0 : v[std::min(v.size() - 1, k * v.size() / 4)];
@@ -65,14 +68,22 @@ std::string projection_svg(const studies::WorkspaceResult& w, const Projection& 
   plot.y_label = view.y_label;
   plot.width_px = 560;
   plot.height_px = 480;
+  // Poses without the quantity (a payload margin computed at some poses only) in grey, beneath.
+  report::Series without;
+  without.label = "not computed";
+  without.style = report::Series::Style::markers;
+  without.colour = "#d9d9d9";
+  for (const auto& p : w.points)
+    if (p.ok && !std::isfinite(quantity(p, colour_by))) without.x.push_back(p.tip_mm[view.x]), without.y.push_back(p.tip_mm[view.y]);
+  if (!without.x.empty()) plot.series.push_back(std::move(without));
   for (int band = 0; band < 4; ++band) {
     report::Series s;
     s.label = name + format_number(edges[band], 3) + "–" + format_number(edges[band + 1], 3) + unit;
     s.style = report::Series::Style::markers;
     s.colour = colours[band];
     for (const auto& p : w.points) {
-      if (!p.ok) continue;
       const double q = quantity(p, colour_by);
+      if (!p.ok || !std::isfinite(q)) continue;
       const int in = q >= edges[3] ? 3 : q >= edges[2] ? 2 : q >= edges[1] ? 1 : 0;
       if (in != band) continue;
       s.x.push_back(p.tip_mm[view.x]);
