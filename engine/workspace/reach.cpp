@@ -143,6 +143,17 @@ ReachResult reach(const fem::SplPressureCells& cells, const ReachTarget& target,
     ++out.starts;
   }
   std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.distance_mm < b.distance_mm; });
+  // A near miss and no hit: SLSQP again from where it stopped, its quasi-Newton model of the misfit
+  // rebuilt, while that brings the tip closer (a search stops at a kink of the tables' misfit, and a
+  // fresh model often steps past it).
+  for (int restart = 0; restart < settings.restarts && !found.empty() && !reached(found.front(), settings) &&
+                        found.front().distance_mm < settings.restart_within_mm;
+       ++restart) {
+    const ReachSolution again = solve_from(cells, target, settings, found.front().pressure_kPa, out.evaluations);
+    ++out.starts;
+    if (!(again.distance_mm < 0.9 * found.front().distance_mm)) break;
+    found.insert(found.begin(), again);
+  }
   if (!found.empty() && std::isfinite(found.front().distance_mm)) out.nearest = found.front();
   for (const ReachSolution& s : found) {
     if (!reached(s, settings)) continue;

@@ -38,6 +38,8 @@ struct ReachSettings {
   double tolerance_mm = 0.5;
   double tolerance_deg = 2;
   int max_evaluations = 600;          // rod solves per start
+  int restarts = 4;                   // a near miss with no start reaching: searches again from it ...
+  double restart_within_mm = 20;      // ... where it is this close, while each gains 10 %
   std::string algorithm = "nlopt:slsqp";  // engine/optimiser's names
   std::optional<fem::SplDesign> design;  // where given, each solution's chamber stretches too
 };

@@ -102,6 +102,12 @@ void write_workspace_report(const std::string& path, const studies::WorkspaceRes
   doc.paragraph("Each point is the tip's centre at one of " + std::to_string(w.points.size()) +
                 " pressure vectors (the corners of the pressure space, then Roberts' R9 sequence), posed on the arm's "
                 "cells; " + std::to_string(w.reached) + " reached an equilibrium within the cells' reach.");
+  if (colour_by == "payload_margin") {
+    const auto computed = std::count_if(w.points.begin(), w.points.end(), [](const auto& p) { return p.payload_margin_kg.has_value(); });
+    doc.paragraph("The payload margin, the extra tip mass with which the arm still holds its tip at that position, "
+                  "was computed at " + std::to_string(computed) +
+                  " poses (a continuation in the mass each); the others are drawn grey.");
+  }
   const auto edges = band_edges(w, colour_by);
   for (const Projection& view : kProjections) doc.raw_html(projection_svg(w, view, colour_by, edges));
   std::vector<std::vector<std::string>> rows = {
