@@ -212,6 +212,39 @@ nlohmann::json summary_json(const WorkspaceOptions& o, const fem::SplPressureCel
   for (const fem::SplCells& ray : cells.rays) j["cells_notes"].push_back(ray.notes);
   return j;
 }
+/// The run's answer on the console: the poses reached and their cost, the extent and volume, the peak
+/// stretch, the payload margins where computed, and why poses were not reached.
+void print_summary(std::ostream& out, const WorkspaceOptions& o, const fem::SplPressureCells& cells,
+                   const studies::WorkspaceResult& w, const nlohmann::json& summary, double margin_seconds) {
+  out << std::fixed << std::setprecision(1) << "workspace: " << w.reached << " of " << w.points.size()
+      << " poses reached (cells " << cells.seconds << " s; poses " << std::setprecision(2) << w.pose_seconds
+      << " s, " << std::setprecision(0) << w.poses_per_second << " per second)\n";
+  if (w.reached > 0)
+    out << std::setprecision(1) << "  extent x " << w.lower_mm.x() << " to " << w.upper_mm.x() << ", y "
+        << w.lower_mm.y() << " to " << w.upper_mm.y() << ", z " << w.lower_mm.z() << " to " << w.upper_mm.z()
+        << " mm; occupied volume " << std::setprecision(2) << w.occupied_volume_mm3 * 1e-6 << " L at "
+        << o.voxel_mm << " mm cubes\n";
+  if (summary.at("peak_stretch").contains("largest"))
+    out << std::setprecision(3) << "  the tube's peak stretch: up to "
+        << summary.at("peak_stretch").at("largest").get<double>() << " (segment "
+        << summary.at("peak_stretch").at("segment").get<int>() << "; the tube's law is fitted up to "
+        << (summary.at("peak_stretch").at("tube_trusted_stretch").is_number()
+                ? fem::number_text(summary.at("peak_stretch").at("tube_trusted_stretch").get<double>())
+                : std::string("an unknown stretch"))
+        << ")\n";
+  if (summary.contains("payload_margin") && summary.at("payload_margin").contains("median_kg"))
+    out << std::setprecision(2) << "  payload margin at " << summary.at("payload_margin").at("poses").get<int>()
+        << " poses: " << summary.at("payload_margin").at("smallest_kg").get<double>() << " to "
+        << summary.at("payload_margin").at("largest_kg").get<double>() << " kg, median "
+        << summary.at("payload_margin").at("median_kg").get<double>() << " kg (" << std::setprecision(0)
+        << margin_seconds << " s)\n";
+  if (const auto [beyond, other] = not_reached(w); beyond + other > 0) {
+    out << "  not reached: " << beyond << " beyond where the cells reached, " << other << " without an equilibrium";
+    if (beyond > 0) out << "; the cells' stops: " << cells.rays.front().notes;
+    out << "\n";
+  }
+  out.unsetf(std::ios::floatfield);
+}
 }  // namespace
 
 CLI::App* add_workspace_command(CLI::App& app, WorkspaceOptions& o) {
@@ -278,34 +311,7 @@ int run_workspace(const WorkspaceOptions& given) {
   if (margin_poses > 0) summary["payload_margin"] = margins_json(w, margin_seconds);
   write_json_file(o.output, "summary.json", summary);
   write_workspace_report(o.output + "/report.html", w, o.colour_by, arm.described);
-  std::cout << std::fixed << std::setprecision(1) << "workspace: " << w.reached << " of " << w.points.size()
-            << " poses reached (cells " << cells.seconds << " s; poses " << std::setprecision(2) << w.pose_seconds
-            << " s, " << std::setprecision(0) << w.poses_per_second << " per second)\n";
-  if (w.reached > 0)
-    std::cout << std::setprecision(1) << "  extent x " << w.lower_mm.x() << " to " << w.upper_mm.x() << ", y "
-              << w.lower_mm.y() << " to " << w.upper_mm.y() << ", z " << w.lower_mm.z() << " to " << w.upper_mm.z()
-              << " mm; occupied volume " << std::setprecision(2) << w.occupied_volume_mm3 * 1e-6 << " L at "
-              << o.voxel_mm << " mm cubes\n";
-  if (summary["peak_stretch"].contains("largest"))
-    std::cout << std::setprecision(3) << "  the tube's peak stretch: up to "
-              << summary["peak_stretch"]["largest"].get<double>() << " (segment "
-              << summary["peak_stretch"]["segment"].get<int>() << "; the tube's law is fitted up to "
-              << (summary["peak_stretch"]["tube_trusted_stretch"].is_number()
-                      ? fem::number_text(summary["peak_stretch"]["tube_trusted_stretch"].get<double>())
-                      : std::string("an unknown stretch"))
-              << ")\n";
-  if (summary.contains("payload_margin") && summary["payload_margin"].contains("median_kg"))
-    std::cout << std::setprecision(2) << "  payload margin at " << summary["payload_margin"]["poses"].get<int>()
-              << " poses: " << summary["payload_margin"]["smallest_kg"].get<double>() << " to "
-              << summary["payload_margin"]["largest_kg"].get<double>() << " kg, median "
-              << summary["payload_margin"]["median_kg"].get<double>() << " kg (" << std::setprecision(0)
-              << margin_seconds << " s)\n";
-  if (const auto [beyond, other] = not_reached(w); beyond + other > 0) {
-    std::cout << "  not reached: " << beyond << " beyond where the cells reached, " << other << " without an equilibrium";
-    if (beyond > 0) std::cout << "; the cells' stops: " << cells.rays.front().notes;
-    std::cout << "\n";
-  }
-  std::cout.unsetf(std::ios::floatfield);
+  print_summary(std::cout, o, cells, w, summary, margin_seconds);
   std::cout << "written: " << o.output << "/points.csv, workspace.vtu, centrelines.vtu, summary.json, report.html, cells.json\n";
   return 0;
 }
