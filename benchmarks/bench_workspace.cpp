@@ -4,7 +4,7 @@
 // --cells (a `softarm workspace` run's cells.json for the same scene), else they are run (minutes)
 // and kept there.
 //
-//   bench_workspace [scene] [--cells F] [--samples N] [--threads N] [--interval-mm H] [--pose p1,...,p9]
+//   bench_workspace [scene] [--cells F] [--directions N] [--samples N] [--threads N] [--interval-mm H] [--pose p1,...,p9]
 //   --pose: also the tip at these nine pressures (kPa), e.g. a reach solution to run in 3D
 //   --interval-mm H: also the workspace with the rod integrated over intervals of H mm (its default
 //     is 0.5 mm): poses per second and the largest tip difference from the default's
@@ -27,7 +27,7 @@ using namespace softarm;
 
 int main(int argc, char** argv) try {
   std::string scene = "configs/spl_thesis_pose.json", cells_file = "out/workspace/cells.json";
-  int samples = 10000, threads = fem::thread_count();
+  int samples = 10000, threads = fem::thread_count(), divisions = 1;
   double interval_mm = 0;
   std::vector<double> pose;
   CLI::App app{"the workspace and reach on an arm's pressure cells: poses per second, the thesis pose found again"};
@@ -38,11 +38,14 @@ int main(int argc, char** argv) try {
   app.add_option("--interval-mm", interval_mm, "also integrate the rod over intervals of this length")
       ->check(bench::Positive)
       ->default_str("none");
+  app.add_option("--directions", divisions, "divisions of each segment's direction grid of the cells")
+      ->check(CLI::Range(1, 4))
+      ->capture_default_str();
   app.add_option("--pose", pose, "also the tip at these nine pressures, kPa")->delimiter(',')->expected(9)->check(bench::Finite);
   if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
   const engine::ArmInput arm = engine::read_arm_input(scene);
   const fem::SplPressureCells cells = engine::cached_pressure_cells(
-      arm, arm.max_pressure_kPa.value_or(fem::thesis::kWorkingPressure_kPa), 1, cells_file, std::cout);
+      arm, arm.max_pressure_kPa.value_or(fem::thesis::kWorkingPressure_kPa), divisions, cells_file, std::cout);
   if (!cells.failure.empty()) {
     std::cout << "no cells: " << cells.failure << "\n";
     return 1;
