@@ -119,4 +119,24 @@ fem::TubePeakMaps judge_workspace_peaks(WorkspaceResult& w, const fem::SplSceneS
   return maps;
 }
 
+std::vector<std::size_t> extent_poses(const WorkspaceResult& w) {
+  std::vector<std::size_t> chosen;
+  const auto add = [&](std::size_t i) {
+    if (w.points[i].ok && std::find(chosen.begin(), chosen.end(), i) == chosen.end()) chosen.push_back(i);
+  };
+  if (!w.points.empty()) add(0);
+  for (int axis = 0; axis < 3; ++axis) {
+    std::size_t low = 0, high = 0;
+    bool any = false;
+    for (std::size_t i = 0; i < w.points.size(); ++i) {
+      if (!w.points[i].ok) continue;
+      if (!any || w.points[i].tip_mm[axis] < w.points[low].tip_mm[axis]) low = i;
+      if (!any || w.points[i].tip_mm[axis] > w.points[high].tip_mm[axis]) high = i;
+      any = true;
+    }
+    if (any) add(low), add(high);
+  }
+  return chosen;
+}
+
 }  // namespace softarm::studies

@@ -78,4 +78,9 @@ fem::TubePeakMaps judge_workspace_peaks(WorkspaceResult& workspace, const fem::S
                                         double max_pressure_kPa, int rra_mesh_level = 1,
                                         double averaging_radius_mm = fem::kDefaultPeakAveragingRadius_mm);
 
+/// The poses whose centrelines a run draws: rest (the first sample, workspace_pressures), and the
+/// reached poses at each end of the extent in x, y and z, in that order, a pose twice only once;
+/// indices into the sweep's points.
+std::vector<std::size_t> extent_poses(const WorkspaceResult& workspace);
+
 }  // namespace softarm::studies

@@ -7,12 +7,14 @@
 // test case of sections: the cells (a minute and a half) are made once per process, and ctest runs
 // each test case in its own.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <array>
 #include <cmath>
 
 #include <random>
 
 #include "engine/workspace/reach.hpp"
+#include "engine/workspace/workspace_margins.hpp"
 #include "studies/workspace.hpp"
 #include "fem/scenes/chamber_stretch.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
@@ -217,6 +219,70 @@ TEST_CASE("The short SPL's pressure cells: the arm's own cells on their rays, cl
     CHECK(again.payload_kg + again.margin_kg ==
           Approx(margin.payload_kg + margin.margin_kg).margin(0.05 * margin.margin_kg + 0.02));
   }
+  SECTION("A near miss is searched again from where it stopped, while each search gains") {
+    // One start on a starved budget stops short of a pose's tip; restarts from there close in on it.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> pressure(0, test::kShortSplPeak_kPa);
+    std::array<double, 9> p{};
+    for (double& x : p) x = pressure(rng);
+    const SpatialCellRodState forward = pose_at_pressures(cells, p);
+    REQUIRE(forward.ok);
+    const engine::ReachTarget target{"posed", forward.position.back(), {}};
+    engine::ReachSettings starved;
+    starved.starts = 1;
+    starved.seed_samples = 20;     // a start far off (the first corners of the pressure space) ...
+    starved.max_evaluations = 30;  // ... and a few steps from it
+    starved.restart_within_mm = 1000;
+    starved.restarts = 0;
+    const engine::ReachResult once = engine::reach(cells, target, starved);
+    REQUIRE(once.nearest);
+    const double first = once.nearest->distance_mm;
+    INFO("one starved search stops " << first << " mm off");
+    REQUIRE(first > starved.tolerance_mm);  // else this target tests nothing
+    CHECK(once.starts == 1);
+    starved.restarts = 4;
+    const engine::ReachResult again = engine::reach(cells, target, starved);
+    INFO("with restarts: " << again.nearest->distance_mm << " mm off after " << again.starts << " searches");
+    CHECK(again.starts > 1);
+    CHECK(again.starts <= 1 + starved.restarts);
+    CHECK(again.nearest->distance_mm < 0.9 * first);
+    // A miss farther than restart_within_mm is left as it is.
+    starved.restart_within_mm = 0.5 * first;
+    CHECK(engine::reach(cells, target, starved).starts == 1);
+  }
+  SECTION("The workspace's payload margins: at the first poses reached after the corners, as payload_margin finds them") {
+    SplPressureCells hanging = cells;
+    hanging.rays.front().rod.gravity_m_s2 = Eigen::Vector3d(0, 0, -9.81);
+    studies::WorkspaceSettings settings;
+    settings.samples = 516;
+    settings.payload_kg = 0.05;
+    studies::WorkspaceResult w = studies::sweep_workspace(hanging, settings);
+    REQUIRE(w.reached == 516);
+    CHECK(engine::margin_poses(w, 3) == std::vector<std::size_t>{512, 513, 514});
+    CHECK(engine::margin_poses(w, 6) == std::vector<std::size_t>{512, 513, 514, 515, 0, 1});
+    w.points[513].ok = false;  // a pose not reached is passed over
+    CHECK(engine::margin_poses(w, 3) == std::vector<std::size_t>{512, 514, 515});
+    w.points[513].ok = true;
+    engine::margins_at_poses(hanging, w, 2, settings.payload_kg);
+    for (std::size_t i = 0; i < w.points.size(); ++i) CHECK(w.points[i].payload_margin_kg.has_value() == (i == 512 || i == 513));
+    // The same margin as payload_margin's from the pose's own pressures, one branch.
+    const studies::WorkspacePoint& at = w.points[512];
+    engine::ReachResult own;
+    own.reachable = true;
+    own.solutions.resize(1);
+    own.solutions[0].pressure_kPa = at.pressure_kPa;
+    own.solutions[0].tip_mm = at.tip_mm;
+    engine::ReachSettings reach_settings;
+    reach_settings.payload_kg = settings.payload_kg;
+    engine::PayloadMarginSettings one_branch;
+    one_branch.max_branches = 1;
+    const engine::PayloadMargin direct =
+        engine::payload_margin(hanging, {"pose", at.tip_mm, {}}, reach_settings, own, one_branch);
+    INFO("pose 512: margin " << *at.payload_margin_kg << " kg");
+    CHECK(*at.payload_margin_kg == Approx(direct.margin_kg).margin(1e-12));
+    CHECK(at.payload_margin_at_least == direct.at_least);
+    CHECK(*at.payload_margin_kg > 0);
+  }
   SECTION("reach says a target beyond the arm is unreachable and gives the nearest point") {
     engine::ReachTarget target;
     target.position_mm = {0, 0, 300};  // above the shoulder (the arm hangs from z ≈ 110 mm)
@@ -253,6 +319,18 @@ TEST_CASE("The short SPL's pressure cells: the arm's own cells on their rays, cl
     REQUIRE(rest.ok);
     CHECK((w.points[0].tip_mm - rest.position.back()).norm() < 1e-12);
     CHECK(w.occupied_volume_mm3 > 0);
+    // The centrelines drawn: rest first, then a pose at each end of the extent in x, y and z, once each.
+    const std::vector<std::size_t> drawn = studies::extent_poses(w);
+    REQUIRE(!drawn.empty());
+    CHECK(drawn.front() == 0);
+    CHECK(drawn.size() <= 7);
+    for (std::size_t k = 0; k < drawn.size(); ++k)
+      for (std::size_t l = k + 1; l < drawn.size(); ++l) CHECK(drawn[k] != drawn[l]);
+    for (int axis = 0; axis < 3; ++axis) {
+      INFO("axis " << axis);
+      CHECK(std::any_of(drawn.begin(), drawn.end(), [&](std::size_t i) { return w.points[i].tip_mm[axis] == w.lower_mm[axis]; }));
+      CHECK(std::any_of(drawn.begin(), drawn.end(), [&](std::size_t i) { return w.points[i].tip_mm[axis] == w.upper_mm[axis]; }));
+    }
     // The same tips on a second sweep (the poses run side by side), this one with the chambers' stretch.
     settings.design = test::short_spl().design;
     studies::WorkspaceResult again = studies::sweep_workspace(cells, settings);

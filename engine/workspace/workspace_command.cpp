@@ -1,7 +1,6 @@
 #include "engine/workspace/workspace_command.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -10,11 +9,11 @@
 #include "engine/report/output_files.hpp"
 #include "engine/workspace/cells_cache.hpp"
 #include "engine/workspace/reach.hpp"
+#include "engine/workspace/workspace_margins.hpp"
 #include "engine/workspace/workspace_report.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/core/thesis_values.hpp"
 #include "fem/core/number_text.hpp"
-#include "fem/core/parallel.hpp"
 #include "fem/io/vtu_writer.hpp"
 #include "studies/progress_bar.hpp"
 #include "studies/workspace.hpp"
@@ -66,43 +65,6 @@ void write_points_vtu(const std::string& dir, const studies::WorkspaceResult& w)
   fem::write_point_cloud_vtu(dir + "/workspace.vtu", tips, fields);
 }
 
-/// Poses whose payload margin a report coloured by it computes, unless told: a few minutes on the thesis arm.
-constexpr int kDefaultMarginPoses = 24;
-
-/// The payload margin at the first `count` reached poses after the corners (the sequence's, spread over
-/// the pressure space), side by side: each pose's own pressures hold its tip there with the payload, and
-/// payload_margin searches on from them (one branch).
-double margins_at_poses(const fem::SplPressureCells& cells, studies::WorkspaceResult& w, int count,
-                        const std::optional<double>& payload_kg) {
-  std::vector<std::size_t> chosen;
-  for (std::size_t i = 512; i < w.points.size() && static_cast<int>(chosen.size()) < count; ++i)
-    if (w.points[i].ok) chosen.push_back(i);
-  if (chosen.size() < static_cast<std::size_t>(count))  // a short sweep: the corners too
-    for (std::size_t i = 0; i < std::min<std::size_t>(512, w.points.size()) && static_cast<int>(chosen.size()) < count; ++i)
-      if (w.points[i].ok) chosen.push_back(i);
-  ReachSettings settings;
-  settings.payload_kg = payload_kg;
-  PayloadMarginSettings margin;
-  margin.max_branches = 1;
-  const auto t0 = std::chrono::steady_clock::now();
-  fem::parallel_tasks(
-      static_cast<int>(chosen.size()),
-      [&](int k) {
-        studies::WorkspacePoint& p = w.points[chosen[k]];
-        ReachResult here;
-        here.reachable = true;
-        ReachSolution own;
-        own.pressure_kPa = p.pressure_kPa;
-        own.tip_mm = p.tip_mm;
-        here.solutions = {own};
-        const PayloadMargin m = payload_margin(cells, {"pose", p.tip_mm, {}}, settings, here, margin);
-        p.payload_margin_kg = m.margin_kg;
-        p.payload_margin_at_least = m.at_least;
-      },
-      studies::task_progress(std::cout, "margins"));
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 /// The margins computed: how many, their range and median, and what they cost.
 nlohmann::json margins_json(const studies::WorkspaceResult& w, double seconds) {
   std::vector<double> m;
@@ -118,34 +80,12 @@ nlohmann::json margins_json(const studies::WorkspaceResult& w, double seconds) {
   return j;
 }
 
-/// The poses whose centrelines the run draws: rest, and the reached poses at each end of the extent in
-/// x, y and z (a pose twice only once); indices into the sweep's points.
-std::vector<std::size_t> chosen_poses(const studies::WorkspaceResult& w) {
-  std::vector<std::size_t> chosen;
-  const auto add = [&](std::size_t i) {
-    if (w.points[i].ok && std::find(chosen.begin(), chosen.end(), i) == chosen.end()) chosen.push_back(i);
-  };
-  if (!w.points.empty()) add(0);  // the first sample is rest (workspace_pressures)
-  for (int axis = 0; axis < 3; ++axis) {
-    std::size_t low = 0, high = 0;
-    bool any = false;
-    for (std::size_t i = 0; i < w.points.size(); ++i) {
-      if (!w.points[i].ok) continue;
-      if (!any || w.points[i].tip_mm[axis] < w.points[low].tip_mm[axis]) low = i;
-      if (!any || w.points[i].tip_mm[axis] > w.points[high].tip_mm[axis]) high = i;
-      any = true;
-    }
-    if (any) add(low), add(high);
-  }
-  return chosen;
-}
-
 /// The chosen poses' centrelines (posed again on the rod's own interval), each with its sample's index.
 void write_centrelines_vtu(const std::string& dir, const fem::SplPressureCells& cells, const studies::WorkspaceResult& w,
                            const std::optional<double>& payload_kg) {
   std::vector<std::vector<Eigen::Vector3d>> lines;
   fem::NamedField sample{"sample", 1, {}};
-  for (std::size_t i : chosen_poses(w)) {
+  for (std::size_t i : studies::extent_poses(w)) {
     const fem::SpatialCellRodState s = fem::pose_at_pressures(cells, w.points[i].pressure_kPa, nullptr, payload_kg);
     if (!s.ok) continue;
     lines.push_back(s.position);
@@ -301,14 +241,17 @@ int run_workspace(const WorkspaceOptions& given) {
   settings.design = arm.spl.design;
   studies::WorkspaceResult w = studies::sweep_workspace(cells, settings, studies::task_progress(std::cout, "poses"));
   const fem::TubePeakMaps maps = studies::judge_workspace_peaks(w, arm.spl, *o.max_pressure_kPa);
-  const int margin_poses = o.margin_poses > 0 ? o.margin_poses : o.colour_by == "payload_margin" ? kDefaultMarginPoses : 0;
-  const double margin_seconds = margin_poses > 0 ? margins_at_poses(cells, w, margin_poses, o.payload_kg) : 0.0;
+  const int margin_count = o.margin_poses > 0 ? o.margin_poses : o.colour_by == "payload_margin" ? kDefaultMarginPoses : 0;
+  const double margin_seconds =
+      margin_count > 0
+          ? margins_at_poses(cells, w, margin_count, o.payload_kg, studies::task_progress(std::cout, "margins"))
+          : 0.0;
   write_points_csv(o.output, w);
   write_points_vtu(o.output, w);
   write_centrelines_vtu(o.output, cells, w, o.payload_kg);
   nlohmann::json summary = summary_json(o, cells, w);
   summary["peak_stretch"] = peaks_json(w, maps, arm.spl.tube_material);
-  if (margin_poses > 0) summary["payload_margin"] = margins_json(w, margin_seconds);
+  if (margin_count > 0) summary["payload_margin"] = margins_json(w, margin_seconds);
   write_json_file(o.output, "summary.json", summary);
   write_workspace_report(o.output + "/report.html", w, o.colour_by, arm.described);
   print_summary(std::cout, o, cells, w, summary, margin_seconds);
