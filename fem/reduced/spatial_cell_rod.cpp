@@ -139,8 +139,11 @@ double spatial_cell_rod_mass_kg(const SpatialCellRodSpec& spec) {
   return m;
 }
 
-SpatialCellRodState solve_spatial_cell_rod(const SpatialCellRodSpec& spec, double level,
-                                           const SpatialCellRodState* start) {
+namespace {
+/// The shape–moment fixed point at the spec's full weights, from `start`'s moments (else none), within
+/// `most_iterations`.
+SpatialCellRodState settle(const SpatialCellRodSpec& spec, double level, const SpatialCellRodState* start,
+                           int most_iterations = 400) {
   SpatialCellRodState out;
   out.level = level;
   std::vector<IntervalSection> sec;
@@ -175,7 +178,7 @@ SpatialCellRodState solve_spatial_cell_rod(const SpatialCellRodSpec& spec, doubl
   std::vector<Eigen::VectorXd> dx, df;
   double best = std::numeric_limits<double>::infinity();
   Vec3 last_tip = Vec3::Constant(1e300);
-  for (int it = 1; it <= 400; ++it) {
+  for (int it = 1; it <= most_iterations; ++it) {
     for (int i = 0; i < n; ++i) moment[i] = x.segment<3>(3 * i), tension[i] = x[3 * n + i];
     // The shape under the current moments, from the clamp down.
     r[0] = Vec3(0, 0, spatial_cell_rod_length_mm(spec));
@@ -228,8 +231,8 @@ SpatialCellRodState solve_spatial_cell_rod(const SpatialCellRodSpec& spec, doubl
     x += step;
   }
   if (!out.ok) {
-    out.diagnosis = "the shape under its weight did not settle in 400 iterations (the weight's moment may exceed what "
-                    "the sections hold: a limit point)";
+    out.diagnosis = "the shape under its weight did not settle in " + std::to_string(most_iterations) +
+                    " iterations (the weight's moment may exceed what the sections hold: a limit point)";
     return out;
   }
   out.position.assign(r.begin(), r.end());
@@ -238,6 +241,49 @@ SpatialCellRodState solve_spatial_cell_rod(const SpatialCellRodSpec& spec, doubl
   out.stretch = std::move(stretches);
   out.curvature_per_mm = std::move(curvature);
   return out;
+}
+
+/// The weights (gravity on the rod, its connectors and the tip mass) raised from none to the spec's,
+/// each equilibrium starting the next: the step doubles after one that settles and halves after one
+/// that does not, down to kSmallestWeightStep. Weightless, the rod takes its free shape at once, and a
+/// nearby weight's moments start the iteration close to its fixed point. On the thesis arm at 9
+/// pressures near its workspace's rim (0.2 kg at the tip) the direct iteration ran its 400 steps
+/// without settling where 90 % of the weight, then the whole, settled in 41 and 16.
+/// A step's iterations are capped at kStepIterations: from its neighbour's moments one settles in tens.
+constexpr double kFirstWeightStep = 0.5, kSmallestWeightStep = 1.0 / 64;
+constexpr int kMostWeightSteps = 40, kStepIterations = 100;
+
+SpatialCellRodState ramp_weights(const SpatialCellRodSpec& spec, double level, SpatialCellRodState failed) {
+  SpatialCellRodSpec ramped = spec;
+  ramped.gravity_m_s2.setZero();
+  SpatialCellRodState held = settle(ramped, level, nullptr);
+  int iterations = failed.iterations + held.iterations;
+  double fraction = 0, step = kFirstWeightStep;
+  for (int k = 0; held.ok && fraction < 1 && step >= kSmallestWeightStep && k < kMostWeightSteps; ++k) {
+    const double next = std::min(1.0, fraction + step);
+    ramped.gravity_m_s2 = next * spec.gravity_m_s2;
+    SpatialCellRodState s = settle(ramped, level, &held, kStepIterations);
+    iterations += s.iterations;
+    if (s.ok) held = std::move(s), fraction = next, step *= 2;
+    else step *= 0.5;
+  }
+  if (held.ok && fraction == 1) {
+    held.iterations = iterations;
+    return held;
+  }
+  failed.diagnosis += "; nor with the weights raised from none, which held to " +
+                      std::to_string(static_cast<int>(100 * fraction)) + " % of them";
+  return failed;
+}
+}  // namespace
+
+SpatialCellRodState solve_spatial_cell_rod(const SpatialCellRodSpec& spec, double level,
+                                           const SpatialCellRodState* start) {
+  SpatialCellRodState direct = settle(spec, level, start);
+  // From no start, an iteration that did not settle (not a level past the tables) is tried again along
+  // the weights; a given start is a path's last state, whose neighbour is wanted, not another branch.
+  if (direct.ok || start || direct.iterations == 0 || spec.gravity_m_s2.isZero()) return direct;
+  return ramp_weights(spec, level, std::move(direct));
 }
 
 }  // namespace softarm::fem

@@ -84,7 +84,9 @@ struct SpatialCellRodState {
 /// The rod's equilibrium at load level t (pressures t times their peaks, full weight). Not ok
 /// where t lies beyond a cell's table (past its last output: a limit point or a stall) or the
 /// shape–moment iteration does not settle. `start`: a nearby state whose moments start the
-/// iteration.
+/// iteration. Without one, an iteration that does not settle is tried again with the weights raised
+/// step by step from none (the branch the weightless shape bends into under its weight); with one,
+/// a failure stands (a path's next state near its last, not one on another branch).
 SpatialCellRodState solve_spatial_cell_rod(const SpatialCellRodSpec& spec, double level,
                                            const SpatialCellRodState* start = nullptr);
 
