@@ -6,6 +6,7 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 
 #include "engine/options/option_checks.hpp"
 #include "engine/design/design_command.hpp"
@@ -226,6 +227,110 @@ std::string nearest_name(const std::string& given, const std::vector<std::string
   return best;
 }
 
+struct SimulateOptions {
+  std::string scene, output;
+  int mesh_level = 0, element_order = 0;
+  std::string fidelity;
+  bool fresh = false;
+};
+CLI::App* add_simulate_command(CLI::App& app, SimulateOptions& o) {
+  CLI::App* sim = app.add_subcommand("simulate", "run a scene config (e.g. configs/rra_thesis.json)");
+  sim->add_option("scene", o.scene, "scene JSON file")->required();
+  sim->add_option("-o,--output", o.output, "output directory (overrides output.directory)");
+  sim->add_option("--mesh-level", o.mesh_level, "mesh refinement level (overrides mesh.level)")->check(CLI::Range(1, 6));
+  sim->add_option("--element-order", o.element_order, "1 (linear) or 2 (quadratic): overrides mesh.element_order")
+      ->check(CLI::Range(1, 2));
+  sim->add_option("--fidelity", o.fidelity,
+                  "fast, balanced or accurate: the fidelity ladder picks the model (overrides the config's mesh and model.fidelity)")
+      ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
+  sim->add_flag("--fresh", o.fresh,
+                "3D scenes: discard the converged steps of an earlier run in the output directory instead of resuming");
+  return sim;
+}
+
+struct ExportOptions {
+  std::string scene, deck = "out/scene.inp";
+  double pressure_kPa = 0.0;
+  int mesh_level = 0;
+};
+CLI::App* add_export_command(CLI::App& app, ExportOptions& o) {
+  CLI::App* exp = app.add_subcommand("export", "write a scene as an Abaqus/CalculiX input deck (.inp)");
+  exp->add_option("scene", o.scene, "scene JSON file")->required();
+  exp->add_option("-o,--output", o.deck, "deck file (default out/scene.inp)");
+  exp->add_option("--pressure-kPa", o.pressure_kPa, "chamber pressure of the deck (default: load.max_pressure_kPa)")
+      ->check(finite_in(1e-6, 1e4, "kPa"));
+  exp->add_option("--mesh-level", o.mesh_level, "mesh refinement level (overrides mesh.level)")->check(CLI::Range(1, 6));
+  return exp;
+}
+
+CLI::App* add_schema_command(CLI::App& app, std::string& scene) {
+  CLI::App* schema = app.add_subcommand("schema", "list every scene-config key with its unit, default and valid range");
+  schema->add_option("--scene", scene, "which keys: rra, tca, spl (scene configs), design (requirements) or study")
+      ->check(CLI::IsMember({"rra", "tca", "spl", "design", "study"}));
+  return schema;
+}
+
+struct DesignCommandOptions {
+  std::string requirements;
+  DesignOverrides overrides;
+};
+CLI::App* add_design_command(CLI::App& app, DesignCommandOptions& o) {
+  CLI::App* design = app.add_subcommand(
+      "design", "the main job: requirements in, optimal design out (e.g. configs/thesis_requirements.json)");
+  design->add_option("requirements", o.requirements, "requirements JSON file")->required();
+  design->add_option("-o,--output", o.overrides.output_directory, "output directory (overrides output.directory)");
+  design->add_option("--algorithm", o.overrides.algorithm, "optimiser algorithm (overrides optimiser.algorithm)")
+      ->check(CLI::IsMember(optimise::algorithm_names()));
+  design->add_option("--max-evaluations", o.overrides.max_evaluations,
+                     "evaluation budget (overrides optimiser.max_evaluations)")
+      ->check(CLI::Range(1, 100000));
+  design->add_option("--fidelity", o.overrides.fidelity,
+                     "accurate: every optimum verified on the cell rod, which decides feasibility (the config's "
+                     "check); fast: the fibre-rod search alone, no verification, no 3D check (a first look in minutes; "
+                     "its measured error is printed)")
+      ->check(CLI::IsMember({"fast", "accurate"}));
+  design->add_flag("--fresh", o.overrides.fresh,
+                   "discard the evaluations and 3D checks of an earlier run in the output directory instead of resuming");
+  return design;
+}
+
+CLI::App* add_study_command(CLI::App& app, StudyOptions& o) {
+  CLI::App* study = app.add_subcommand("study", "run parameter studies from JSON study configs and write their design-rule "
+                                                "reports (e.g. configs/studies); resumes; mpirun -np N spreads the points");
+  study->add_option("configs", o.configs, "study config files or directories of them")->required();
+  study->add_option("-o,--output", o.output_root, "output root: <root>/<study>/ and <root>/index.html")
+      ->capture_default_str();
+  study->add_option("--jobs", o.jobs, "points solved at once on this machine (default: all cores; 1 per "
+                                      "rank under mpirun)")
+      ->check(CLI::Range(1, 1024));
+  study->add_flag("--fresh", o.fresh, "discard earlier results instead of resuming");
+  study->add_flag("--retry-failed", o.retry_failed, "recompute points recorded as failed");
+  study->add_flag("--report-only", o.report_only, "write the reports from the results on disk");
+  return study;
+}
+
+CLI::App* add_fidelity_command(CLI::App& app, std::string& report) {
+  CLI::App* fidelity = app.add_subcommand("fidelity", "the fidelity ladder: each scene's models with measured error and "
+                                                      "cost (what model.fidelity / model.target_error_percent choose from)");
+  fidelity->add_option("--report", report, "also write an HTML page with a Pareto plot per scene");
+  return fidelity;
+}
+
+/// A first argument that names no command: the nearest that does, and exit 2; else nothing.
+std::optional<int> refuse_unknown_command(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2) return std::nullopt;
+  const std::string first = argv[1];
+  if (first.empty() || first[0] == '-') return std::nullopt;
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
+  if (std::find(names.begin(), names.end(), first) != names.end()) return std::nullopt;
+  std::cerr << "softarm: unknown command '" << first << "'; did you mean '" << nearest_name(first, names)
+            << "'? Commands:";
+  for (const auto& n : names) std::cerr << " " << n;
+  std::cerr << " (softarm --help)\n";
+  return 2;
+}
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
@@ -236,92 +341,29 @@ int run_cli(int argc, char** argv) {
   int threads = 0;
   app.add_option("--threads", threads, "worker threads for assembly (default: SOFTARM_THREADS or all cores)")
       ->check(CLI::Range(1, 256));
-
-  std::string scene_file, output_dir;
-  int mesh_level = 0;
-  auto* sim = app.add_subcommand("simulate", "run a scene config (e.g. configs/rra_thesis.json)");
-  sim->add_option("scene", scene_file, "scene JSON file")->required();
-  sim->add_option("-o,--output", output_dir, "output directory (overrides output.directory)");
-  sim->add_option("--mesh-level", mesh_level, "mesh refinement level (overrides mesh.level)")->check(CLI::Range(1, 6));
-  int element_order = 0;
-  sim->add_option("--element-order", element_order, "1 (linear) or 2 (quadratic): overrides mesh.element_order")
-      ->check(CLI::Range(1, 2));
-  std::string fidelity_choice;
-  sim->add_option("--fidelity", fidelity_choice,
-                  "fast, balanced or accurate: the fidelity ladder picks the model (overrides the config's mesh and model.fidelity)")
-      ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
-  bool simulate_fresh = false;
-  sim->add_flag("--fresh", simulate_fresh,
-                "3D scenes: discard the converged steps of an earlier run in the output directory instead of resuming");
-
-  std::string deck_path = "out/scene.inp";
-  double deck_pressure_kPa = 0.0;
-  auto* exp = app.add_subcommand("export", "write a scene as an Abaqus/CalculiX input deck (.inp)");
-  exp->add_option("scene", scene_file, "scene JSON file")->required();
-  exp->add_option("-o,--output", deck_path, "deck file (default out/scene.inp)");
-  exp->add_option("--pressure-kPa", deck_pressure_kPa, "chamber pressure of the deck (default: load.max_pressure_kPa)")
-      ->check(finite_in(1e-6, 1e4, "kPa"));
-  exp->add_option("--mesh-level", mesh_level, "mesh refinement level (overrides mesh.level)")->check(CLI::Range(1, 6));
-
-  auto* schema = app.add_subcommand("schema", "list every scene-config key with its unit, default and valid range");
+  SimulateOptions simulate_options;
+  CLI::App* sim = add_simulate_command(app, simulate_options);
+  ExportOptions export_options;
+  CLI::App* exp = add_export_command(app, export_options);
   std::string schema_scene = "rra";
-  schema->add_option("--scene", schema_scene, "which keys: rra, tca, spl (scene configs), design (requirements) or study")
-      ->check(CLI::IsMember({"rra", "tca", "spl", "design", "study"}));
-  std::string design_file;
-  DesignOverrides design_overrides;
-  auto* design = app.add_subcommand("design", "the main job: requirements in, optimal design out (e.g. configs/thesis_requirements.json)");
-  design->add_option("requirements", design_file, "requirements JSON file")->required();
-  design->add_option("-o,--output", design_overrides.output_directory, "output directory (overrides output.directory)");
-  design->add_option("--algorithm", design_overrides.algorithm, "optimiser algorithm (overrides optimiser.algorithm)")
-      ->check(CLI::IsMember(optimise::algorithm_names()));
-  design->add_option("--max-evaluations", design_overrides.max_evaluations,
-                     "evaluation budget (overrides optimiser.max_evaluations)")
-      ->check(CLI::Range(1, 100000));
-  design->add_option("--fidelity", design_overrides.fidelity,
-                     "accurate: every optimum verified on the cell rod, which decides feasibility (the config's "
-                     "check); fast: the fibre-rod search alone, no verification, no 3D check (a first look in minutes; "
-                     "its measured error is printed)")
-      ->check(CLI::IsMember({"fast", "accurate"}));
-  design->add_flag("--fresh", design_overrides.fresh,
-                   "discard the evaluations and 3D checks of an earlier run in the output directory instead of resuming");
+  CLI::App* schema = add_schema_command(app, schema_scene);
+  DesignCommandOptions design_options;
+  CLI::App* design = add_design_command(app, design_options);
   StudyOptions study_options;
-  auto* study = app.add_subcommand("study", "run parameter studies from JSON study configs and write their design-rule "
-                                            "reports (e.g. configs/studies); resumes; mpirun -np N spreads the points");
-  study->add_option("configs", study_options.configs, "study config files or directories of them")->required();
-  study->add_option("-o,--output", study_options.output_root, "output root: <root>/<study>/ and <root>/index.html")
-      ->capture_default_str();
-  study->add_option("--jobs", study_options.jobs, "points solved at once on this machine (default: all cores; 1 per "
-                                                  "rank under mpirun)")
-      ->check(CLI::Range(1, 1024));
-  study->add_flag("--fresh", study_options.fresh, "discard earlier results instead of resuming");
-  study->add_flag("--retry-failed", study_options.retry_failed, "recompute points recorded as failed");
-  study->add_flag("--report-only", study_options.report_only, "write the reports from the results on disk");
-  auto* fidelity = app.add_subcommand("fidelity", "the fidelity ladder: each scene's models with measured error and cost "
-                                                  "(what model.fidelity / model.target_error_percent choose from)");
+  CLI::App* study = add_study_command(app, study_options);
   std::string fidelity_report;
-  fidelity->add_option("--report", fidelity_report, "also write an HTML page with a Pareto plot per scene");
+  CLI::App* fidelity = add_fidelity_command(app, fidelity_report);
   add_material_command(app);
   WorkspaceOptions workspace_options;
   CLI::App* workspace = add_workspace_command(app, workspace_options);
   ReachOptions reach_options;
   CLI::App* reach = add_reach_command(app, reach_options);
 
-  // Bare `softarm`: the help, not an error. An unknown command: the nearest known one.
-  if (argc == 1) {
+  if (argc == 1) {  // bare `softarm`: the help, not an error
     std::cout << app.help();
     return 0;
   }
-  if (const std::string first = argv[1]; !first.empty() && first[0] != '-') {
-    std::vector<std::string> names;
-    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
-    if (std::find(names.begin(), names.end(), first) == names.end()) {
-      std::cerr << "softarm: unknown command '" << first << "'; did you mean '" << nearest_name(first, names)
-                << "'? Commands:";
-      for (const auto& n : names) std::cerr << " " << n;
-      std::cerr << " (softarm --help)\n";
-      return 2;
-    }
-  }
+  if (const std::optional<int> refused = refuse_unknown_command(app, argc, argv)) return *refused;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -332,8 +374,9 @@ int run_cli(int argc, char** argv) {
   }
   if (threads > 0) fem::set_thread_count(threads);
   try {
-    if (*sim) return simulate(scene_file, output_dir, mesh_level, element_order, fidelity_choice, simulate_fresh);
-    if (*design) return run_design(design_file, design_overrides);
+    const SimulateOptions& so = simulate_options;
+    if (*sim) return simulate(so.scene, so.output, so.mesh_level, so.element_order, so.fidelity, so.fresh);
+    if (*design) return run_design(design_options.requirements, design_options.overrides);
     if (*study) return run_study_command(study_options);
     if (*workspace) return run_workspace(workspace_options);
     if (*reach) return run_reach(reach_options);
@@ -342,7 +385,7 @@ int run_cli(int argc, char** argv) {
       if (!fidelity_report.empty()) write_fidelity_report(fidelity_report);
       return 0;
     }
-    if (*exp) return export_deck(scene_file, deck_path, deck_pressure_kPa, mesh_level);
+    if (*exp) return export_deck(export_options.scene, export_options.deck, export_options.pressure_kPa, export_options.mesh_level);
     if (*schema) {
       print_schema(schema_scene);
       return 0;
