@@ -313,127 +313,163 @@ std::string legend_svg(const LinePlot& plot, const std::vector<std::string>& col
     return out + "</g>\n";
 }
 
-std::string render_svg(const LinePlot& plot) {
-    const int width = std::max(plot.width_px, 200), height = std::max(plot.height_px, 150);
-    auto drawable = [&](double x, double y) { return std::isfinite(x) && std::isfinite(y) && (!plot.log_y || y > 0); };
+namespace {
+/// Whether a point of `plot` can be drawn: finite, and positive on a log scale.
+bool drawable(const LinePlot& plot, double x, double y) {
+    return std::isfinite(x) && std::isfinite(y) && (!plot.log_y || y > 0);
+}
 
-    if (plot.series.empty()) return no_data_svg(plot.title, width, height, "no series to plot");
+/// The box of the drawable points and the reference lines; its count of points.
+struct DataBounds {
     double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
     std::size_t points = 0;
+};
+DataBounds data_bounds(const LinePlot& plot) {
+    DataBounds b;
     for (const Series& s : plot.series) {
         const std::size_t n = std::min(s.x.size(), s.y.size());
         for (std::size_t i = 0; i < n; ++i) {
-            if (!drawable(s.x[i], s.y[i])) continue;
-            ++points;
-            xlo = std::min(xlo, s.x[i]), xhi = std::max(xhi, s.x[i]);
-            ylo = std::min(ylo, s.y[i]), yhi = std::max(yhi, s.y[i]);
+            if (!drawable(plot, s.x[i], s.y[i])) continue;
+            ++b.points;
+            b.xlo = std::min(b.xlo, s.x[i]), b.xhi = std::max(b.xhi, s.x[i]);
+            b.ylo = std::min(b.ylo, s.y[i]), b.yhi = std::max(b.yhi, s.y[i]);
         }
     }
-    if (points == 0)
+    for (const auto& [y, label] : plot.horizontal_lines)
+        if (std::isfinite(y) && (!plot.log_y || y > 0)) b.ylo = std::min(b.ylo, y), b.yhi = std::max(b.yhi, y);
+    return b;
+}
+
+/// The plotting area in the picture: its axes, margins and the maps from data to pixels.
+struct PlotFrame {
+    Axis xa, ya;
+    double left = 0, top = 0, pw = 0, ph = 0;
+    Rect area() const { return {left, top, left + pw, top + ph}; }
+    double map_x(double x) const { return left + (x - xa.lo) / (xa.hi - xa.lo) * pw; }
+    double map_y(double y) const { return top + ph - (ya.to_axis(y) - ya.lo) / (ya.hi - ya.lo) * ph; }
+    bool inside(double X, double Y, double slack) const {
+        return X >= left - slack && X <= left + pw + slack && Y >= top - slack && Y <= top + ph + slack;
+    }
+};
+PlotFrame plot_frame(const LinePlot& plot, const DataBounds& b, int width, int height) {
+    PlotFrame f{make_axis(b.xlo, b.xhi, plot.x_min, plot.x_max, false), make_axis(b.ylo, b.yhi, plot.y_min, plot.y_max, plot.log_y)};
+    double widest_y_label = 0;
+    for (const auto& l : f.ya.labels) widest_y_label = std::max(widest_y_label, text_width(l, 11));
+    f.top = plot.title.empty() ? 14 : 34;
+    const double bottom = 26 + (plot.x_label.empty() ? 0 : 18);
+    f.left = widest_y_label + 12 + (plot.y_label.empty() ? 0 : 20);
+    const double right = 18;
+    f.pw = std::max(40.0, width - f.left - right), f.ph = std::max(40.0, height - f.top - bottom);
+    return f;
+}
+
+/// Grid, frame, ticks, their labels and the axes' labels.
+std::string axes_svg(const LinePlot& plot, const PlotFrame& f, int height) {
+    std::string grid;
+    for (const double t : f.xa.ticks) grid += "M" + px(f.map_x(t)) + " " + px(f.top) + "V" + px(f.top + f.ph + 4);
+    for (const double t : f.ya.ticks) grid += "M" + px(f.left - 4) + " " + px(f.map_y(t)) + "H" + px(f.left + f.pw);
+    std::string out = "<path d=\"" + grid + "\" stroke=\"#e3e3e3\" fill=\"none\"/>\n";
+    out += "<rect x=\"" + px(f.left) + "\" y=\"" + px(f.top) + "\" width=\"" + px(f.pw) + "\" height=\"" + px(f.ph) +
+           "\" fill=\"none\" stroke=\"#777\"/>\n";
+    out += "<g font-size=\"11\" fill=\"#333\">\n";
+    for (std::size_t i = 0; i < f.xa.ticks.size(); ++i)
+        out += text(f.map_x(f.xa.ticks[i]), f.top + f.ph + 16, f.xa.labels[i], "text-anchor=\"middle\"");
+    for (std::size_t i = 0; i < f.ya.ticks.size(); ++i)
+        out += text(f.left - 6, f.map_y(f.ya.ticks[i]) + 4, f.ya.labels[i], "text-anchor=\"end\"");
+    out += "</g>\n";
+    if (!plot.x_label.empty()) out += text(f.left + f.pw / 2, height - 8, plot.x_label, "text-anchor=\"middle\"");
+    if (!plot.y_label.empty())
+        out += "<text transform=\"rotate(-90)\" x=\"" + px(-(f.top + f.ph / 2)) + "\" y=\"15\" text-anchor=\"middle\">" +
+               escape_html(plot.y_label) + "</text>\n";
+    return out;
+}
+
+/// The horizontal reference lines inside the area, dashed, each with its label at the right.
+std::string reference_lines_svg(const LinePlot& plot, const PlotFrame& f) {
+    std::string out;
+    for (const auto& [y, label] : plot.horizontal_lines) {
+        if (!std::isfinite(y) || (plot.log_y && y <= 0)) continue;
+        const double v = f.map_y(y);
+        if (v < f.top - 0.5 || v > f.top + f.ph + 0.5) continue;
+        out += "<path d=\"M" + px(f.left) + " " + px(v) + "H" + px(f.left + f.pw) +
+               "\" stroke=\"#555\" stroke-dasharray=\"3 3\" fill=\"none\"/>\n";
+        if (!label.empty())
+            out += text(f.left + f.pw - 4, v - 4, label, "text-anchor=\"end\" font-size=\"11\" fill=\"#555\"");
+    }
+    return out;
+}
+
+/// One series: its line clipped to the area and broken at points not drawable, a dot for an isolated
+/// point of a line, its markers inside the area.
+std::string series_svg(const LinePlot& plot, const Series& s, const std::string& colour, const PlotFrame& f) {
+    const std::size_t n = std::min(s.x.size(), s.y.size());
+    const bool lines = s.style != Series::Style::markers;
+    const bool markers = s.style != Series::Style::line;
+    const Rect area = f.area();
+    std::string d, dots, marks;
+    bool have_previous = false, pen_valid = false;
+    double previous_x = 0, previous_y = 0, pen_x = 0, pen_y = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!drawable(plot, s.x[i], s.y[i])) {  // skipped: the line breaks here
+            have_previous = false;
+            continue;
+        }
+        const double X = f.map_x(s.x[i]), Y = f.map_y(s.y[i]);
+        if (!std::isfinite(X) || !std::isfinite(Y)) {
+            have_previous = false;
+            continue;
+        }
+        if (markers && f.inside(X, Y, 0.5)) marks += marker_path(s.marker, X, Y, 3);
+        if (lines) {
+            if (have_previous) {
+                double ax = previous_x, ay = previous_y, bx = X, by = Y;
+                if (clip_segment(ax, ay, bx, by, area)) {
+                    if (!pen_valid || ax != pen_x || ay != pen_y) d += "M" + px(ax) + " " + px(ay);
+                    d += "L" + px(bx) + " " + px(by);
+                    pen_x = bx, pen_y = by, pen_valid = true;
+                }
+            } else {
+                // An isolated point (no finite neighbour on either side) still shows, as a dot.
+                const bool next_ok = i + 1 < n && drawable(plot, s.x[i + 1], s.y[i + 1]);
+                if (!next_ok && !markers && f.inside(X, Y, 0)) dots += marker_path(Series::Marker::circle, X, Y, 1.8);
+            }
+        }
+        previous_x = X, previous_y = Y, have_previous = true;
+    }
+    std::string out;
+    if (!d.empty())
+        out += "<path d=\"" + d + "\" fill=\"none\" stroke=\"" + colour +
+               "\" stroke-width=\"1.8\" stroke-linejoin=\"round\"" + (s.dashed ? " stroke-dasharray=\"6 4\"" : "") +
+               "/>\n";
+    if (!dots.empty()) out += "<path d=\"" + dots + "\" fill=\"" + colour + "\"/>\n";
+    if (!marks.empty()) out += marker_element(s.marker, marks, colour);
+    return out;
+}
+}  // namespace
+
+std::string render_svg(const LinePlot& plot) {
+    const int width = std::max(plot.width_px, 200), height = std::max(plot.height_px, 150);
+    if (plot.series.empty()) return no_data_svg(plot.title, width, height, "no series to plot");
+    const DataBounds bounds = data_bounds(plot);
+    if (bounds.points == 0)
         return no_data_svg(plot.title, width, height,
                            plot.log_y ? "no finite positive points (log scale)" : "no finite points");
-    for (const auto& [y, label] : plot.horizontal_lines)
-        if (std::isfinite(y) && (!plot.log_y || y > 0)) ylo = std::min(ylo, y), yhi = std::max(yhi, y);
-
-    const Axis xa = make_axis(xlo, xhi, plot.x_min, plot.x_max, false);
-    const Axis ya = make_axis(ylo, yhi, plot.y_min, plot.y_max, plot.log_y);
-
-    // Layout.
-    double widest_y_label = 0;
-    for (const auto& l : ya.labels) widest_y_label = std::max(widest_y_label, text_width(l, 11));
-    const double top = plot.title.empty() ? 14 : 34;
-    const double bottom = 26 + (plot.x_label.empty() ? 0 : 18);
-    const double left = widest_y_label + 12 + (plot.y_label.empty() ? 0 : 20);
-    const double right = 18;
-    const double pw = std::max(40.0, width - left - right), ph = std::max(40.0, height - top - bottom);
-    const Rect area{left, top, left + pw, top + ph};
-    auto map_x = [&](double x) { return left + (x - xa.lo) / (xa.hi - xa.lo) * pw; };
-    auto map_y = [&](double y) { return top + ph - (ya.to_axis(y) - ya.lo) / (ya.hi - ya.lo) * ph; };
-
+    const PlotFrame frame = plot_frame(plot, bounds, width, height);
     const std::size_t rows = legend_rows(plot);
     const int legend_height = rows ? static_cast<int>(std::ceil(rows * legend_row_px + 14)) : 0;
     std::string out = svg_open(width, height + legend_height, plot.title.empty() ? "plot" : plot.title);
     if (!plot.title.empty())
         out += text(width / 2.0, 21, plot.title, "text-anchor=\"middle\" font-size=\"14\" font-weight=\"bold\"");
-
-    // Grid, frame, ticks and their labels.
-    std::string grid;
-    for (const double t : xa.ticks) grid += "M" + px(map_x(t)) + " " + px(top) + "V" + px(top + ph + 4);
-    for (const double t : ya.ticks) grid += "M" + px(left - 4) + " " + px(map_y(t)) + "H" + px(left + pw);
-    out += "<path d=\"" + grid + "\" stroke=\"#e3e3e3\" fill=\"none\"/>\n";
-    out += "<rect x=\"" + px(left) + "\" y=\"" + px(top) + "\" width=\"" + px(pw) + "\" height=\"" + px(ph) +
-           "\" fill=\"none\" stroke=\"#777\"/>\n";
-    out += "<g font-size=\"11\" fill=\"#333\">\n";
-    for (std::size_t i = 0; i < xa.ticks.size(); ++i)
-        out += text(map_x(xa.ticks[i]), top + ph + 16, xa.labels[i], "text-anchor=\"middle\"");
-    for (std::size_t i = 0; i < ya.ticks.size(); ++i)
-        out += text(left - 6, map_y(ya.ticks[i]) + 4, ya.labels[i], "text-anchor=\"end\"");
-    out += "</g>\n";
-    if (!plot.x_label.empty()) out += text(left + pw / 2, height - 8, plot.x_label, "text-anchor=\"middle\"");
-    if (!plot.y_label.empty())
-        out += "<text transform=\"rotate(-90)\" x=\"" + px(-(top + ph / 2)) + "\" y=\"15\" text-anchor=\"middle\">" +
-               escape_html(plot.y_label) + "</text>\n";
-
-    // Horizontal reference lines.
-    for (const auto& [y, label] : plot.horizontal_lines) {
-        if (!std::isfinite(y) || (plot.log_y && y <= 0)) continue;
-        const double v = map_y(y);
-        if (v < top - 0.5 || v > top + ph + 0.5) continue;
-        out += "<path d=\"M" + px(left) + " " + px(v) + "H" + px(left + pw) +
-               "\" stroke=\"#555\" stroke-dasharray=\"3 3\" fill=\"none\"/>\n";
-        if (!label.empty())
-            out += text(left + pw - 4, v - 4, label, "text-anchor=\"end\" font-size=\"11\" fill=\"#555\"");
-    }
-
-    // Series.
+    out += axes_svg(plot, frame, height);
+    out += reference_lines_svg(plot, frame);
     std::size_t palette_index = 0;
     std::vector<std::string> colours;
     for (const Series& s : plot.series) {
-        const std::string colour =
-            escape_html(s.colour.empty() ? palette[palette_index++ % std::size(palette)] : s.colour);
-        colours.push_back(colour);
-        const std::size_t n = std::min(s.x.size(), s.y.size());
-        const bool lines = s.style != Series::Style::markers;
-        const bool markers = s.style != Series::Style::line;
-        std::string d, dots, marks;
-        bool have_previous = false, pen_valid = false;
-        double previous_x = 0, previous_y = 0, pen_x = 0, pen_y = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-            const double X = drawable(s.x[i], s.y[i]) ? map_x(s.x[i]) : NAN;
-            const double Y = drawable(s.x[i], s.y[i]) ? map_y(s.y[i]) : NAN;
-            if (!std::isfinite(X) || !std::isfinite(Y)) {  // skipped: the line breaks here
-                have_previous = false;
-                continue;
-            }
-            if (markers && X >= left - 0.5 && X <= left + pw + 0.5 && Y >= top - 0.5 && Y <= top + ph + 0.5)
-                marks += marker_path(s.marker, X, Y, 3);
-            if (lines) {
-                if (have_previous) {
-                    double ax = previous_x, ay = previous_y, bx = X, by = Y;
-                    if (clip_segment(ax, ay, bx, by, area)) {
-                        if (!pen_valid || ax != pen_x || ay != pen_y) d += "M" + px(ax) + " " + px(ay);
-                        d += "L" + px(bx) + " " + px(by);
-                        pen_x = bx, pen_y = by, pen_valid = true;
-                    }
-                } else {
-                    // An isolated point (no finite neighbour on either side) still shows, as a dot.
-                    const bool next_ok = i + 1 < n && drawable(s.x[i + 1], s.y[i + 1]);
-                    if (!next_ok && !markers && X >= left && X <= left + pw && Y >= top && Y <= top + ph)
-                        dots += marker_path(Series::Marker::circle, X, Y, 1.8);
-                }
-            }
-            previous_x = X, previous_y = Y, have_previous = true;
-        }
-        if (!d.empty())
-            out += "<path d=\"" + d + "\" fill=\"none\" stroke=\"" + colour +
-                   "\" stroke-width=\"1.8\" stroke-linejoin=\"round\"" +
-                   (s.dashed ? " stroke-dasharray=\"6 4\"" : "") + "/>\n";
-        if (!dots.empty()) out += "<path d=\"" + dots + "\" fill=\"" + colour + "\"/>\n";
-        if (!marks.empty()) out += marker_element(s.marker, marks, colour);
+        colours.push_back(escape_html(s.colour.empty() ? palette[palette_index++ % std::size(palette)] : s.colour));
+        out += series_svg(plot, s, colours.back(), frame);
     }
-
     // Legend: below the axes, where it hides no point and needs no truncation.
-    out += legend_svg(plot, colours, left, height + 2.0, width - left - 8);
+    out += legend_svg(plot, colours, frame.left, height + 2.0, width - frame.left - 8);
     out += "</svg>\n";
     return out;
 }
