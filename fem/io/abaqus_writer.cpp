@@ -109,9 +109,17 @@ std::vector<std::pair<int, int>> chamber_faces_3d(const Mesh& mesh, const Chambe
   return result;
 }
 
-}  // namespace
+double gravity_norm_m_s2(const AbaqusDeck& deck) {
+  const auto& g = deck.gravity_m_s2;
+  return std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+}
 
-void write_abaqus_deck(const std::string& path, const AbaqusDeck& deck) {
+/// The element the deck writes for the mesh's, after the checks on what a deck can hold.
+struct DeckElement {
+  std::string type;   // CAX4/CAX8(R), C3D8I/C3D8R, C3D20(R)
+  int written_nodes;  // of each element's: CAX8 drops the Q2 centre node, C3D20 the Hex27 face and body centres
+};
+DeckElement deck_element(const AbaqusDeck& deck) {
   const Mesh& mesh = *deck.mesh;
   const bool axisymmetric = mesh.dim == 2;
   if (axisymmetric ? (mesh.nodes_per_element != 4 && mesh.nodes_per_element != 9)
@@ -119,15 +127,7 @@ void write_abaqus_deck(const std::string& path, const AbaqusDeck& deck) {
                                         mesh.nodes_per_element != 27)))
     throw std::invalid_argument("write_abaqus_deck: only axisymmetric Q1/Q2 and 3D Hex8/Hex20/Hex27 meshes");
   const bool quadratic = axisymmetric ? mesh.nodes_per_element == 9 : mesh.nodes_per_element != 8;
-  // CAX8 drops the Q2 centre node, C3D20 the Hex27 face and body centres (a Hex20 is a C3D20 as it is).
-  const int written_nodes = axisymmetric ? (quadratic ? 8 : 4) : (quadratic ? 20 : 8);
-  const std::string element_type =
-      axisymmetric ? std::string(quadratic ? "CAX8" : "CAX4") + (deck.reduced_integration ? "R" : "")
-                   : quadratic ? std::string("C3D20") + (deck.reduced_integration ? "R" : "")
-                               : std::string(deck.reduced_integration ? "C3D8R" : "C3D8I");
-  const auto& g = deck.gravity_m_s2;
-  const double g_norm = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-  if (axisymmetric && g_norm != 0.0)
+  if (axisymmetric && gravity_norm_m_s2(deck) != 0.0)
     throw std::invalid_argument("write_abaqus_deck: gravity is exported for 3D meshes only");
   if (!axisymmetric && !deck.axis_node_sets.empty())
     throw std::invalid_argument("write_abaqus_deck: axis node sets are for axisymmetric meshes; use fixed_components");
@@ -135,43 +135,48 @@ void write_abaqus_deck(const std::string& path, const AbaqusDeck& deck) {
     if (component < 1 || component > mesh.dim)
       throw std::invalid_argument("write_abaqus_deck: fixed component " + std::to_string(component) + " of node set '" +
                                   set + "' is not in 1.." + std::to_string(mesh.dim));
+  if (axisymmetric)
+    return {std::string(quadratic ? "CAX8" : "CAX4") + (deck.reduced_integration ? "R" : ""), quadratic ? 8 : 4};
+  if (quadratic) return {std::string("C3D20") + (deck.reduced_integration ? "R" : ""), 20};
+  return {deck.reduced_integration ? "C3D8R" : "C3D8I", 8};
+}
 
-  // Chamber facets → (element, face), for the pressurised chambers.
-  auto pressure = [&](std::size_t c) { return c < deck.chamber_pressure_MPa.size() ? deck.chamber_pressure_MPa[c] : 0.0; };
-  std::vector<std::vector<std::pair<int, int>>> chamber_faces(mesh.chambers.size());
-  if (axisymmetric) {
-    // CAX faces 1..4 join corners (1,2), (2,3), (3,4), (4,1).
-    constexpr int corners = 4;
-    std::map<std::pair<int, int>, std::pair<int, int>> face_of;
-    for (int e = 0; e < mesh.num_elements(); ++e)
-      for (int f = 0; f < corners; ++f) {
-        const int a = mesh.element(e)[f], b = mesh.element(e)[(f + 1) % corners];
-        face_of[{std::min(a, b), std::max(a, b)}] = {e, f};
-      }
-    for (std::size_t c = 0; c < mesh.chambers.size(); ++c) {
-      if (pressure(c) == 0.0) continue;
-      for (const auto& facet : mesh.chambers[c].facets) {
-        const int a = facet.front(), b = facet.back();
-        const auto it = face_of.find({std::min(a, b), std::max(a, b)});
-        if (it == face_of.end()) throw std::invalid_argument("write_abaqus_deck: a chamber edge is not an element face");
-        chamber_faces[c].push_back(it->second);
-      }
-    }
-  } else {
+double chamber_pressure_MPa(const AbaqusDeck& deck, std::size_t c) {
+  return c < deck.chamber_pressure_MPa.size() ? deck.chamber_pressure_MPa[c] : 0.0;
+}
+
+/// Each pressurised chamber's facets as (element, face) pairs; CAX faces 1..4 join corners (1,2),
+/// (2,3), (3,4), (4,1).
+std::vector<std::vector<std::pair<int, int>>> pressurised_faces(const AbaqusDeck& deck) {
+  const Mesh& mesh = *deck.mesh;
+  std::vector<std::vector<std::pair<int, int>>> faces(mesh.chambers.size());
+  if (mesh.dim == 3) {
     for (std::size_t c = 0; c < mesh.chambers.size(); ++c)
-      if (pressure(c) != 0.0) chamber_faces[c] = chamber_faces_3d(mesh, mesh.chambers[c]);
+      if (chamber_pressure_MPa(deck, c) != 0.0) faces[c] = chamber_faces_3d(mesh, mesh.chambers[c]);
+    return faces;
   }
-
-  if (const auto dir = std::filesystem::path(path).parent_path(); !dir.empty()) {
-    std::error_code error;
-    std::filesystem::create_directories(dir, error);  // a failure shows as the open below failing
+  constexpr int corners = 4;
+  std::map<std::pair<int, int>, std::pair<int, int>> face_of;
+  for (int e = 0; e < mesh.num_elements(); ++e)
+    for (int f = 0; f < corners; ++f) {
+      const int a = mesh.element(e)[f], b = mesh.element(e)[(f + 1) % corners];
+      face_of[{std::min(a, b), std::max(a, b)}] = {e, f};
+    }
+  for (std::size_t c = 0; c < mesh.chambers.size(); ++c) {
+    if (chamber_pressure_MPa(deck, c) == 0.0) continue;
+    for (const auto& facet : mesh.chambers[c].facets) {
+      const int a = facet.front(), b = facet.back();
+      const auto it = face_of.find({std::min(a, b), std::max(a, b)});
+      if (it == face_of.end()) throw std::invalid_argument("write_abaqus_deck: a chamber edge is not an element face");
+      faces[c].push_back(it->second);
+    }
   }
-  std::ofstream out(path);
-  if (!out) throw std::invalid_argument("write_abaqus_deck: cannot write '" + path + "'");
-  out.precision(12);
-  out << "*HEADING\n" << deck.heading << "\n";
+  return faces;
+}
 
-  // Nodes used by the written elements (a Q2 centre node, Hex27 face and body centres are not).
+/// *NODE: the nodes the written elements use (a Q2 centre node, Hex27 face and body centres are not);
+/// returns which those are.
+std::vector<char> write_nodes(std::ostream& out, const Mesh& mesh, int written_nodes) {
   out << "*NODE, NSET=NALL\n";
   std::vector<char> used(mesh.num_nodes(), 0);
   for (int e = 0; e < mesh.num_elements(); ++e)
@@ -182,14 +187,18 @@ void write_abaqus_deck(const std::string& path, const AbaqusDeck& deck) {
       for (int i = 0; i < mesh.dim; ++i) out << ", " << mesh.X(n, i);
       out << "\n";
     }
+  return used;
+}
 
+/// *ELEMENT per part, then the mesh's node sets (their written nodes).
+void write_elements_and_sets(std::ostream& out, const Mesh& mesh, const DeckElement& element, const std::vector<char>& used) {
   for (std::size_t p = 0; p < mesh.part_names.size(); ++p) {
-    out << "*ELEMENT, TYPE=" << element_type << ", ELSET=E_" << mesh.part_names[p] << "\n";
+    out << "*ELEMENT, TYPE=" << element.type << ", ELSET=E_" << mesh.part_names[p] << "\n";
     for (int e = 0; e < mesh.num_elements(); ++e) {
       if (mesh.part[e] != static_cast<int>(p)) continue;
       out << e + 1;
       // Abaqus data lines hold at most 16 entries: a C3D20 line continues after 15 nodes.
-      for (int a = 0; a < written_nodes; ++a) out << (a == 15 ? ",\n" : ", ") << mesh.element(e)[a] + 1;
+      for (int a = 0; a < element.written_nodes; ++a) out << (a == 15 ? ",\n" : ", ") << mesh.element(e)[a] + 1;
       out << "\n";
     }
   }
@@ -199,27 +208,53 @@ void write_abaqus_deck(const std::string& path, const AbaqusDeck& deck) {
       if (used[n]) written.push_back(n);
     if (!written.empty()) write_node_set(out, name, written);
   }
-  for (std::size_t p = 0; p < mesh.part_names.size(); ++p) {
-    write_material(out, "M_" + mesh.part_names[p], deck.part_materials.at(p), g_norm != 0.0);
-    out << "*SOLID SECTION, ELSET=E_" << mesh.part_names[p] << ", MATERIAL=M_" << mesh.part_names[p] << "\n";
-  }
-  out << "*BOUNDARY\n";
-  for (const auto& s : deck.clamped_node_sets) out << s << ", 1, " << mesh.dim << "\n";
-  for (const auto& s : deck.axis_node_sets) out << s << ", 1, 1\n";
-  for (const auto& [set, component] : deck.fixed_components) out << set << ", " << component << ", " << component << "\n";
+}
 
+/// The one *STEP: its increments, the chambers' pressures, gravity (its magnitude in mm/s², then the
+/// unit direction) and the printed node sets.
+void write_step(std::ostream& out, const AbaqusDeck& deck, const std::vector<std::vector<std::pair<int, int>>>& faces) {
+  const Mesh& mesh = *deck.mesh;
+  const auto& g = deck.gravity_m_s2;
+  const double g_norm = gravity_norm_m_s2(deck);
   out << "*STEP, NLGEOM, INC=10000\n*STATIC\n"
       << deck.initial_increment << ", 1.0, " << deck.min_increment << ", " << deck.max_increment << "\n*DLOAD\n";
-  for (std::size_t c = 0; c < mesh.chambers.size(); ++c) {
-    for (const auto& [e, f] : chamber_faces[c]) out << e + 1 << ", P" << f + 1 << ", " << pressure(c) << "\n";
-  }
-  if (g_norm != 0.0)  // magnitude in mm/s², then the unit direction
+  for (std::size_t c = 0; c < mesh.chambers.size(); ++c)
+    for (const auto& [e, f] : faces[c]) out << e + 1 << ", P" << f + 1 << ", " << chamber_pressure_MPa(deck, c) << "\n";
+  if (g_norm != 0.0)
     for (std::size_t p = 0; p < mesh.part_names.size(); ++p)
       if (std::count(mesh.part.begin(), mesh.part.end(), static_cast<int>(p)) > 0)
         out << "E_" << mesh.part_names[p] << ", GRAV, " << 1000.0 * g_norm << ", " << g[0] / g_norm << ", "
             << g[1] / g_norm << ", " << g[2] / g_norm << "\n";
   for (const auto& s : deck.printed_node_sets) out << "*NODE PRINT, NSET=" << s << "\nU\n";
   out << "*END STEP\n";
+}
+
+}  // namespace
+
+void write_abaqus_deck(const std::string& path, const AbaqusDeck& deck) {
+  const Mesh& mesh = *deck.mesh;
+  const DeckElement element = deck_element(deck);
+  const auto faces = pressurised_faces(deck);
+  if (const auto dir = std::filesystem::path(path).parent_path(); !dir.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);  // a failure shows as the open below failing
+  }
+  std::ofstream out(path);
+  if (!out) throw std::invalid_argument("write_abaqus_deck: cannot write '" + path + "'");
+  out.precision(12);
+  out << "*HEADING\n" << deck.heading << "\n";
+  const std::vector<char> used = write_nodes(out, mesh, element.written_nodes);
+  write_elements_and_sets(out, mesh, element, used);
+  const bool gravity = gravity_norm_m_s2(deck) != 0.0;
+  for (std::size_t p = 0; p < mesh.part_names.size(); ++p) {
+    write_material(out, "M_" + mesh.part_names[p], deck.part_materials.at(p), gravity);
+    out << "*SOLID SECTION, ELSET=E_" << mesh.part_names[p] << ", MATERIAL=M_" << mesh.part_names[p] << "\n";
+  }
+  out << "*BOUNDARY\n";
+  for (const auto& s : deck.clamped_node_sets) out << s << ", 1, " << mesh.dim << "\n";
+  for (const auto& s : deck.axis_node_sets) out << s << ", 1, 1\n";
+  for (const auto& [set, component] : deck.fixed_components) out << set << ", " << component << ", " << component << "\n";
+  write_step(out, deck, faces);
   if (!out) throw std::runtime_error("write_abaqus_deck: write failed for '" + path + "'");
 }
 
