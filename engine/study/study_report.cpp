@@ -156,37 +156,41 @@ void write_csv(const StudySpec& spec, const std::vector<StudyPoint>& points, con
   }
 }
 
-}  // namespace
-
-json write_study_report(const StudySpec& spec, const std::vector<StudyPoint>& points,
-                        const std::map<std::string, json>& records, const std::filesystem::path& directory) {
-  const auto curves = studies::apply_rule(spec, points, records);
-  const auto thesis = studies::compare_with_thesis(spec, points, curves);
-  const auto outputs = table_outputs(spec);
-  const auto& axis = spec.axes.front();
-
-  report::HtmlDocument doc(spec.title);
-  doc.heading(1, spec.title);
-  if (!spec.description.empty()) doc.paragraph(spec.description);
+/// The points solved, failed and not run, and the solver time they took.
+struct PointTally {
   int ok = 0, failed = 0, missing = 0;
   double seconds = 0;
+};
+PointTally tally_points(const std::vector<StudyPoint>& points, const std::map<std::string, json>& records) {
+  PointTally t;
   for (const auto& p : points) {
     const json* r = record_of(records, p);
-    if (!r) ++missing;
-    else if (r->value("status", "") == "ok") ++ok;
-    else ++failed;
-    seconds += std::isfinite(number_or_nan(r, "seconds")) ? number_or_nan(r, "seconds") : 0.0;
+    if (!r) ++t.missing;
+    else if (r->value("status", "") == "ok") ++t.ok;
+    else ++t.failed;
+    t.seconds += std::isfinite(number_or_nan(r, "seconds")) ? number_or_nan(r, "seconds") : 0.0;
   }
+  return t;
+}
+
+/// "Model: …. Points: …": the first record's model and dofs (else the spec's model), and the tally.
+std::string model_paragraph(const StudySpec& spec, const std::vector<StudyPoint>& points,
+                            const std::map<std::string, json>& records, const PointTally& t) {
   std::string model;
   for (const auto& p : points)
     if (const json* r = record_of(records, p); r && r->contains("model")) {
       model = (*r)["model"].get<std::string>() + ", " + report::format_number(number_or_nan(r, "dofs"), 6) + " dofs";
       break;
     }
-  doc.paragraph("Model: " + (model.empty() ? spec.model : model) + ". Points: " + std::to_string(points.size()) + " (" +
-                std::to_string(ok) + " solved, " + std::to_string(failed) + " failed or invalid, " +
-                std::to_string(missing) + " not run); solver time " + report::format_number(seconds, 3) + " s.");
+  return "Model: " + (model.empty() ? spec.model : model) + ". Points: " + std::to_string(points.size()) + " (" +
+         std::to_string(t.ok) + " solved, " + std::to_string(t.failed) + " failed or invalid, " +
+         std::to_string(t.missing) + " not run); solver time " + report::format_number(t.seconds, 3) + " s.";
+}
 
+/// The rule in words, each curve's reasoning, and the chosen values against the thesis'; returns the
+/// choices as the summary lists them.
+json rule_section(report::HtmlDocument& doc, const StudySpec& spec, const std::vector<StudyPoint>& points,
+                  const std::vector<studies::CurveChoice>& curves) {
   doc.heading(2, "Design rule");
   std::string rule_text = "Rule: " + spec.rule.goal + "imise " + spec.rule.output;
   if (spec.rule.keep_percent < 100 && !spec.rule.then_minimise.empty())
@@ -197,7 +201,6 @@ json write_study_report(const StudySpec& spec, const std::vector<StudyPoint>& po
                  (l.min ? " ≥ " + report::format_number(*l.min, 4) : "");
   doc.paragraph(rule_text + ".");
   for (const auto& c : curves) doc.paragraph((c.label.empty() ? "" : c.label + ": ") + c.words);
-
   json chosen = json::array();
   std::vector<std::vector<std::string>> choice_rows;
   for (const auto& c : curves) {
@@ -206,18 +209,18 @@ json write_study_report(const StudySpec& spec, const std::vector<StudyPoint>& po
     choice_rows.push_back({c.label.empty() ? "—" : c.label, c.chosen >= 0 ? value_text(value) : "!none",
                            spec.thesis.choice.is_null() ? "—" : value_text(spec.thesis.choice)});
   }
-  doc.table({"curve", "softarm's choice (" + axis.label + ")", "thesis' choice"}, choice_rows, "the chosen values");
+  doc.table({"curve", "softarm's choice (" + spec.axes.front().label + ")", "thesis' choice"}, choice_rows,
+            "the chosen values");
+  return chosen;
+}
 
-  doc.heading(2, "Comparison with the thesis");
-  if (!spec.thesis.figure.empty() || !spec.thesis.finding.empty())
-    doc.paragraph("Thesis (" + spec.thesis.figure + "): " + spec.thesis.finding);
-  doc.paragraph(thesis.words);
-  if (!spec.thesis.discussion.empty()) doc.paragraph("Why: " + spec.thesis.discussion);
-
-  doc.heading(2, "Results");
+/// The plots: the pressure curves where the study plots against pressure; for a numeric axis the rule's
+/// output, the thesis' trend output and what the rule weighs or limits; else bars of the rule's output.
+void result_plots(report::HtmlDocument& doc, const StudySpec& spec, const std::vector<StudyPoint>& points,
+                  const std::map<std::string, json>& records, const std::vector<studies::CurveChoice>& curves) {
+  const auto& axis = spec.axes.front();
   if (spec.plot_x == "pressure") doc.raw_html(pressure_plot(spec, points, records));
   if (axis.numeric()) {
-    // The rule's output, the thesis' trend output, and what the rule weighs or limits.
     std::vector<std::string> plotted{spec.rule.output};
     const auto add = [&](const std::string& o) {
       if (!o.empty() && std::find(plotted.begin(), plotted.end(), o) == plotted.end()) plotted.push_back(o);
@@ -226,16 +229,22 @@ json write_study_report(const StudySpec& spec, const std::vector<StudyPoint>& po
     add(spec.rule.then_minimise);
     for (const auto& l : spec.rule.limits) add(l.output);
     for (const auto& o : plotted) doc.raw_html(parameter_plot(spec, points, records, curves, o));
-  } else {
-    report::BarChart bars;
-    bars.title = spec.rule.output + " by " + axis.label;
-    bars.value_label = spec.rule.output;
-    for (const auto& p : points)
-      bars.bars.push_back({value_text(p.values[0]) + (studies::curve_label(spec, p).empty() ? "" : ", " + studies::curve_label(spec, p)),
-                           number_or_nan(record_of(records, p), spec.rule.output), ""});
-    doc.raw_html(report::render_svg(bars));
+    return;
   }
+  report::BarChart bars;
+  bars.title = spec.rule.output + " by " + axis.label;
+  bars.value_label = spec.rule.output;
+  for (const auto& p : points)
+    bars.bars.push_back({value_text(p.values[0]) + (studies::curve_label(spec, p).empty() ? "" : ", " + studies::curve_label(spec, p)),
+                         number_or_nan(record_of(records, p), spec.rule.output), ""});
+  doc.raw_html(report::render_svg(bars));
+}
 
+/// Every point's values, status, outputs and time (the chosen in bold, the failed muted), then the
+/// diagnoses recorded.
+void point_tables(report::HtmlDocument& doc, const StudySpec& spec, const std::vector<StudyPoint>& points,
+                  const std::map<std::string, json>& records, const std::vector<studies::CurveChoice>& curves,
+                  const std::vector<std::string>& outputs) {
   std::vector<std::string> header;
   for (const auto& a : spec.axes) header.push_back(a.label);
   header.push_back("status");
@@ -261,8 +270,13 @@ json write_study_report(const StudySpec& spec, const std::vector<StudyPoint>& po
     if (const json* r = record_of(records, p); r && r->contains("diagnosis"))
       diagnoses.push_back({p.key, r->value("status", std::string()), (*r)["diagnosis"].get<std::string>()});
   if (!diagnoses.empty()) doc.table({"point", "status", "diagnosis"}, diagnoses, "diagnoses");
+}
 
+/// The chosen points' deformed shapes, where recorded.
+void chosen_shapes(report::HtmlDocument& doc, const StudySpec& spec, const std::vector<StudyPoint>& points,
+                   const std::map<std::string, json>& records, const std::vector<studies::CurveChoice>& curves) {
   doc.heading(2, "Deformed shapes of the chosen points");
+  const auto& axis = spec.axes.front();
   std::string shapes;
   for (const auto& c : curves)
     if (c.chosen >= 0)
@@ -272,28 +286,51 @@ json write_study_report(const StudySpec& spec, const std::vector<StudyPoint>& po
                                                       report::format_number(number_or_nan(r, "reached_pressure_kPa"), 4) +
                                                       " kPa");
   doc.raw_html(shapes.empty() ? "<p>No shape recorded.</p>" : "<div>" + shapes + "</div>");
+}
+
+}  // namespace
+
+json write_study_report(const StudySpec& spec, const std::vector<StudyPoint>& points,
+                        const std::map<std::string, json>& records, const std::filesystem::path& directory) {
+  const auto curves = studies::apply_rule(spec, points, records);
+  const auto thesis = studies::compare_with_thesis(spec, points, curves);
+  const auto outputs = table_outputs(spec);
+  const PointTally tally = tally_points(points, records);
+
+  report::HtmlDocument doc(spec.title);
+  doc.heading(1, spec.title);
+  if (!spec.description.empty()) doc.paragraph(spec.description);
+  doc.paragraph(model_paragraph(spec, points, records, tally));
+  const json chosen = rule_section(doc, spec, points, curves);
+  doc.heading(2, "Comparison with the thesis");
+  if (!spec.thesis.figure.empty() || !spec.thesis.finding.empty())
+    doc.paragraph("Thesis (" + spec.thesis.figure + "): " + spec.thesis.finding);
+  doc.paragraph(thesis.words);
+  if (!spec.thesis.discussion.empty()) doc.paragraph("Why: " + spec.thesis.discussion);
+  doc.heading(2, "Results");
+  result_plots(doc, spec, points, records, curves);
+  point_tables(doc, spec, points, records, curves, outputs);
+  chosen_shapes(doc, spec, points, records, curves);
 
   std::filesystem::create_directories(directory);
   doc.write(directory / "report.html");
   write_csv(spec, points, records, outputs, directory / "results.csv");
+  json rule_words = json::array();
+  for (const auto& c : curves) rule_words.push_back(c.words);
   const json summary = {{"study", spec.name},
                         {"title", spec.title},
-                        {"axis", axis.label},
+                        {"axis", spec.axes.front().label},
                         {"points", points.size()},
-                        {"solved", ok},
-                        {"failed", failed},
-                        {"not_run", missing},
+                        {"solved", tally.ok},
+                        {"failed", tally.failed},
+                        {"not_run", tally.missing},
                         {"chosen", chosen},
                         {"thesis_choice", spec.thesis.choice},
                         {"thesis_figure", spec.thesis.figure},
                         {"choice_agrees", thesis.choice_agrees},
                         {"trend_agrees", thesis.trend_agrees},
                         {"comparison", thesis.words},
-                        {"rule_words", [&] {
-                           json w = json::array();
-                           for (const auto& c : curves) w.push_back(c.words);
-                           return w;
-                         }()}};
+                        {"rule_words", rule_words}};
   std::ofstream(directory / "summary.json") << summary.dump(2) << "\n";
   return summary;
 }
