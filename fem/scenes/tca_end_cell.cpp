@@ -18,67 +18,42 @@ EndFaceSupport tca_scene_end_support(TcaEnd end) {
   return end == TcaEnd::top ? EndFaceSupport::bonded : EndFaceSupport::free;
 }
 
-TcaEndCellResult run_tca_end_cell(const TcaSceneSpec& spec, TcaEnd end, int rings, EndFaceSupport face) {
-  const auto t0 = std::chrono::steady_clock::now();
-  validate(spec.design);
-  TcaEndCellResult out;
-  out.end = end;
-  out.face = face;
-  out.rings = rings;
-  out.length_mm = rings * spec.design.actuator.pitch();
-  TcaSceneSpec frame_spec = spec;
-  frame_spec.gravity_m_s2 = Eigen::Vector3d::Zero();
-  out.model = choose_tca_model(frame_spec);
-  const double theta = out.model.frame_angle_rad;
-  const Mesh mesh = mesh_tca_end(spec.design, end, rings, solid_mesh_options(spec, out.model));
-  const std::vector<Material> materials = tca_part_materials(spec);
-  const bool top = end == TcaEnd::top, bonded = face == EndFaceSupport::bonded;
-  const std::string cut_set = top ? "bottom" : "top", end_set = top ? "top" : "bottom";
-
-  // Positions: the mesh's nodes, then the cut plane's pilot (a, b, c) at the origin.
-  const int pilot = mesh.num_nodes();
-  Vector X = Vector::Zero(3 * (pilot + 1));
-  X.head(3 * pilot) = flattened_positions(mesh);
+namespace {
+/// The end cell's supports: a bonded end face clamped (and, in a half model, the cut's pilot held from
+/// sloping across the mirror plane), or a free end face with the cut held on its rest plane, moving only
+/// rigidly within it; the mirror plane's normal displacement fixed either way.
+DirichletConstraints end_cell_constraints(const Mesh& mesh, int pilot, bool bonded, bool half, const std::string& end_set,
+                                          const std::string& cut_set) {
   DirichletConstraints bc;
   if (bonded) {
     bc = clamped_with_symmetry(mesh, end_set);
-    if (out.model.half) bc.fix(3 * pilot + 2);  // no slope across the mirror plane
-  } else {
-    if (const auto it = mesh.node_sets.find("symmetry"); it != mesh.node_sets.end())
-      for (int n : it->second) bc.fix(3 * n + 1);
-    for (int d = 0; d < 3; ++d) bc.fix(3 * pilot + d);  // the cut stays on its rest plane
-    hold_in_plane_rigid_motion(mesh, mesh.node_sets.at(cut_set), out.model.half, bc);
+    if (half) bc.fix(3 * pilot + 2);  // no slope across the mirror plane
+    return bc;
   }
-  EnergyProblem problem(X, bc);
-  auto elastic = make_elastic_form(mesh, materials, VolumetricTreatment::projected_dilatation,
-                                   hex20_integration(mesh, spec.integration));
-  out.element_name = elastic->element_name();
-  problem.add_form(elastic);
-  const double cut_z = top ? spec.design.actuator.length_mm - out.length_mm : out.length_mm;
-  const double mu = stiffest_silicone_shear_modulus(mesh, materials);
-  problem.add_form(std::make_shared<PlaneFaceForm>(mesh.node_sets.at(cut_set), pilot, cut_z, kPlanePenaltyRatio * mu));
-  if (spec.newton.rotate_stiff_parts) problem.set_stiff_inclusions(stiff_parts(mesh, materials));
-  LoadState load;
-  load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
-  const ChamberLoads chambers = add_chamber_loads(
-      mesh, {spec.chamber_pressure_kPa.begin(), spec.chamber_pressure_kPa.end()}, load, problem);
-  problem.finalize();
-  out.dofs = problem.num_dofs();
+  if (const auto it = mesh.node_sets.find("symmetry"); it != mesh.node_sets.end())
+    for (int n : it->second) bc.fix(3 * n + 1);
+  for (int d = 0; d < 3; ++d) bc.fix(3 * pilot + d);  // the cut stays on its rest plane
+  hold_in_plane_rigid_motion(mesh, mesh.node_sets.at(cut_set), half, bc);
+  return bc;
+}
 
-  // Both faces' measures; a half model's are completed by its mirror image.
-  const auto end_face = boundary_faces_in(mesh, mesh.node_sets.at(end_set));
-  const auto cut_face = boundary_faces_in(mesh, mesh.node_sets.at(cut_set));
-  const auto measure = [&](const std::vector<std::vector<int>>& facets, const Vector& x) {
+/// What an end cell's state says: its faces' turn and the axis' elongation between them, measured on
+/// both faces (a half model's completed by its mirror image).
+struct EndCellFaces {
+  std::vector<std::vector<int>> end_face, cut_face;
+  bool half = false, bonded = false;
+  bool moving_face_is_upper = false;  // the cut where the end face is bonded, else the end face
+  int pilot = 0;
+  double theta = 0, length_mm = 0;
+  Eigen::Vector3d bend = Eigen::Vector3d::Zero();  // user frame, unit (or zero)
+  FaceMeasure end_rest;
+
+  FaceMeasure measure(const std::vector<std::vector<int>>& facets, const Vector& x) const {
     const FaceMeasure m = measure_face(facets, x);
-    return out.model.half ? mirror_completed(m) : m;
-  };
-  Eigen::Vector3d bend = tca_bend_direction(spec.chamber_pressure_kPa);  // user frame
-  if (bend.norm() > 0) bend.normalize();
-  const FaceMeasure end_rest = measure(end_face, X);
-  // The moving face (the cut where the end face is bonded, else the end face) is the upper one
-  // where the end's own face is not: a bonded bottom end, a free top end.
-  const bool moving_face_is_upper = bonded == !top;
-  const auto state_of = [&](double pressure_kPa, const Vector& x) {
+    return half ? mirror_completed(m) : m;
+  }
+
+  TcaEndState state(double pressure_kPa, const Vector& x) const {
     TcaEndState s;
     s.pressure_kPa = pressure_kPa;
     const FaceMeasure e = measure(end_face, x), c = measure(cut_face, x);
@@ -100,24 +75,82 @@ TcaEndCellResult run_tca_end_cell(const TcaSceneSpec& spec, TcaEnd end, int ring
     s.rotation_rad = phi.dot(Eigen::Vector3d::UnitZ().cross(bend));
     // The axis as an arc of constant curvature between the faces' centroids: chord·(φ/2)/sin(φ/2).
     const double chord = (e.centroid - c.centroid).norm(), half_turn = 0.5 * phi.norm();
-    s.elongation_mm = chord * (half_turn > 1e-12 ? half_turn / std::sin(half_turn) : 1.0) - out.length_mm;
+    s.elongation_mm = chord * (half_turn > 1e-12 ? half_turn / std::sin(half_turn) : 1.0) - length_mm;
     return s;
-  };
+  }
+};
+
+/// An unloaded end cell's path: its rest state alone.
+void rest_only(TcaEndCellResult& out, const EndCellFaces& faces, const Vector& x) {
+  out.states.push_back(faces.state(0.0, x));
+  out.states.back().is_output = true;
+  out.path.path.completed = true;
+  out.path.path.reached_level = 1.0;
+  out.path.path.message = "no load: the rest state";
+  out.path.outcome = PathOutcome::completed;
+  out.path.diagnosis = out.path.path.message;
+}
+}  // namespace
+
+TcaEndCellResult run_tca_end_cell(const TcaSceneSpec& spec, TcaEnd end, int rings, EndFaceSupport face) {
+  const auto t0 = std::chrono::steady_clock::now();
+  validate(spec.design);
+  TcaEndCellResult out;
+  out.end = end;
+  out.face = face;
+  out.rings = rings;
+  out.length_mm = rings * spec.design.actuator.pitch();
+  TcaSceneSpec frame_spec = spec;
+  frame_spec.gravity_m_s2 = Eigen::Vector3d::Zero();
+  out.model = choose_tca_model(frame_spec);
+  const Mesh mesh = mesh_tca_end(spec.design, end, rings, solid_mesh_options(spec, out.model));
+  const std::vector<Material> materials = tca_part_materials(spec);
+  const bool top = end == TcaEnd::top, bonded = face == EndFaceSupport::bonded;
+  const std::string cut_set = top ? "bottom" : "top", end_set = top ? "top" : "bottom";
+
+  // Positions: the mesh's nodes, then the cut plane's pilot (a, b, c) at the origin.
+  const int pilot = mesh.num_nodes();
+  Vector X = Vector::Zero(3 * (pilot + 1));
+  X.head(3 * pilot) = flattened_positions(mesh);
+  EnergyProblem problem(X, end_cell_constraints(mesh, pilot, bonded, out.model.half, end_set, cut_set));
+  auto elastic = make_elastic_form(mesh, materials, VolumetricTreatment::projected_dilatation,
+                                   hex20_integration(mesh, spec.integration));
+  out.element_name = elastic->element_name();
+  problem.add_form(elastic);
+  const double cut_z = top ? spec.design.actuator.length_mm - out.length_mm : out.length_mm;
+  const double mu = stiffest_silicone_shear_modulus(mesh, materials);
+  problem.add_form(std::make_shared<PlaneFaceForm>(mesh.node_sets.at(cut_set), pilot, cut_z, kPlanePenaltyRatio * mu));
+  if (spec.newton.rotate_stiff_parts) problem.set_stiff_inclusions(stiff_parts(mesh, materials));
+  LoadState load;
+  load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
+  const ChamberLoads chambers = add_chamber_loads(
+      mesh, {spec.chamber_pressure_kPa.begin(), spec.chamber_pressure_kPa.end()}, load, problem);
+  problem.finalize();
+  out.dofs = problem.num_dofs();
+
+  EndCellFaces faces;
+  faces.end_face = boundary_faces_in(mesh, mesh.node_sets.at(end_set));
+  faces.cut_face = boundary_faces_in(mesh, mesh.node_sets.at(cut_set));
+  faces.half = out.model.half;
+  faces.bonded = bonded;
+  // The moving face is the upper one where the end's own face is not: a bonded bottom end, a free top end.
+  faces.moving_face_is_upper = bonded == !top;
+  faces.pilot = pilot;
+  faces.theta = out.model.frame_angle_rad;
+  faces.length_mm = out.length_mm;
+  faces.bend = tca_bend_direction(spec.chamber_pressure_kPa);
+  if (faces.bend.norm() > 0) faces.bend.normalize();
+  faces.end_rest = faces.measure(faces.end_face, X);
   Vector x = X;
   if (chambers.loaded.empty()) {
-    out.states.push_back(state_of(0.0, x));
-    out.states.back().is_output = true;
-    out.path.path.completed = true;
-    out.path.path.reached_level = 1.0;
-    out.path.path.message = "no load: the rest state";
-    out.path.outcome = PathOutcome::completed;
-    out.path.diagnosis = out.path.path.message;
+    rest_only(out, faces, x);
   } else {  // the ramp records the rest state first
-    out.path = run_pressure_path(problem, chambers.loaded, load, x, tca_pressure_path(spec, chambers, false, 0), [&](const PressureState& p, const Vector& xs) {
-      out.states.push_back(state_of(p.pressure_kPa, xs));
+    const auto record = [&](const PressureState& p, const Vector& xs) {
+      out.states.push_back(faces.state(p.pressure_kPa, xs));
       out.states.back().newton_iterations = p.newton_iterations;
       out.states.back().is_output = p.is_output;
-    });
+    };
+    out.path = run_pressure_path(problem, chambers.loaded, load, x, tca_pressure_path(spec, chambers, false, 0), record);
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
