@@ -175,108 +175,126 @@ std::string lowest_mode_note(const StopContext& c, PressurePathResult& out) {
   return mode_note;
 }
 
+/// The pressure-volume curve flattened: ballooning, its peak estimated from the quadratic p(V) through
+/// the last two states' slopes.
+void name_ballooning(const StopContext& c, PressurePathResult& out, const std::string& volume_note) {
+  const PressureState& last = c.last;
+  out.outcome = PathOutcome::limit_point;
+  out.limit_kind = LimitKind::pressure_volume;
+  out.estimated_limit_pressure_kPa = last.pressure_kPa;
+  if (out.history.size() >= 2) {
+    const PressureState& prev = out.history[out.history.size() - 2];
+    const double dV = last.chamber_volume_mm3 - prev.chamber_volume_mm3;
+    const double curvature = dV != 0.0 ? (last.pv_stiffness_kPa_per_mm3 - prev.pv_stiffness_kPa_per_mm3) / dV : 0.0;
+    if (curvature < 0.0 && last.pv_stiffness_kPa_per_mm3 > 0.0)
+      out.estimated_limit_pressure_kPa =
+          last.pressure_kPa - last.pv_stiffness_kPa_per_mm3 * last.pv_stiffness_kPa_per_mm3 / (2 * curvature);
+  }
+  // Volume control may have climbed past the last pressure-controlled state: the peak is no lower.
+  out.estimated_limit_pressure_kPa = std::max(out.estimated_limit_pressure_kPa, out.reached_pressure_kPa);
+  out.diagnosis = "limit point (ballooning): the pressure-volume curve flattens at " + fmt(last.pressure_kPa) +
+                  " kPa (dp/dV fell to " + fmt(100 * c.ratio, 3) + " % of its initial value" +
+                  (last.tangent_positive_definite ? "" : ", tangent no longer positive definite") +
+                  "); estimated peak pressure " + fmt(out.estimated_limit_pressure_kPa) +
+                  " kPa. Pressure control cannot pass it; this is the burst mode of this design." + volume_note;
+}
+
+/// The tangent's lowest mode lost almost all its stiffness while dp/dV did not fall.
+void name_lowest_mode_limit(const StopContext& c, PressurePathResult& out, const std::string& mode_note) {
+  out.outcome = PathOutcome::limit_point;
+  out.limit_kind = LimitKind::lowest_mode;
+  out.estimated_limit_pressure_kPa = c.last.pressure_kPa;
+  out.diagnosis = "local limit point at " + fmt(c.last.pressure_kPa) + " kPa: pressure control stopped (" +
+                  to_string(out.path.failure) + ") where the tangent's lowest mode has lost almost all its "
+                  "stiffness, while dp/dV of the loaded volume, " + fmt(100 * c.ratio, 3) +
+                  " % of its initial value, is above the limit-point threshold: an instability the loaded volume "
+                  "barely shows (in a 3CA, a chamber wall ballooning between two rings). The burst pressure is at "
+                  "or just above this one." + mode_note;
+}
+
+/// One of the lowest eigenvalues falls to zero just ahead, at `fold_kPa`.
+void name_fold(const StopContext& c, const FoldEstimate& fold, double fold_kPa, PressurePathResult& out,
+               const std::string& mode_note, const std::string& volume_note) {
+  const PressurePathSpec& spec = c.spec;
+  const PressureState& last = c.last;
+  out.outcome = PathOutcome::limit_point;
+  out.limit_kind = LimitKind::fold;
+  out.estimated_limit_pressure_kPa = fold_kPa;
+  std::string where;
+  if (spec.node_dimension > 0) {
+    const ModeExtent e = mode_extent(fold.mode, spec.node_dimension);
+    where = ", a mode that moves " + fmt(100 * e.participation, 2) + " % of the nodes, most at " +
+            node_location(c.problem.reference_positions(), e.peak_node, spec.node_dimension);
+  }
+  out.diagnosis = "local limit point (fold) at " + fmt(fold_kPa) + " kPa: pressure control stopped at " +
+                  fmt(last.pressure_kPa) + " kPa (" + to_string(out.path.failure) + ") where the tangent's eigenvalue " +
+                  std::to_string(fold.mode_index + 1) + " of " + std::to_string(fold.eigenvalues_computed) + where +
+                  ", falls to zero " + fmt(fold_kPa - last.pressure_kPa, 3) + " kPa ahead (" + fmt(fold.eigenvalue, 3) +
+                  " N/mm, falling by " + fmt(-fold.rate / spec.max_pressure_kPa, 3) +
+                  " N/mm per kPa: the square root of the distance to the fold). The path folds there, an instability "
+                  "the loaded volume barely shows (dp/dV " + fmt(100 * c.ratio, 3) +
+                  " % of its initial value): the burst pressure of this design." + mode_note + volume_note;
+}
+
+/// No limit point near, but the step can be cut no further without turning an element inside out: an
+/// element failure, named with its place, not a stall.
+void name_inversion(const StopContext& c, PressurePathResult& out, const std::string& mode_note,
+                    const std::string& volume_note) {
+  const PressurePathSpec& spec = c.spec;
+  out.outcome = PathOutcome::element_inversion;
+  out.inverted_element = out.path.failed_element;
+  const std::string where =
+      spec.node_dimension > 0 ? " (" + node_location(c.problem.reference_positions(),
+                                                     c.body->element_corner_node(out.inverted_element),
+                                                     spec.node_dimension) + ")"
+                              : "";
+  out.diagnosis = "element inversion at " + fmt(c.last.pressure_kPa) + " kPa: every step beyond it, down to the " +
+                  "smallest increment, turns element " + std::to_string(out.inverted_element) + where +
+                  " inside out (" + out.path.message + ") while dp/dV is " + fmt(100 * c.ratio, 3) +
+                  " % of its initial value, so no limit point is near: the mesh cannot follow the deformation "
+                  "there (a fold or a crease of the silicone, or a contact the model does not have). A finer mesh "
+                  "(mesh.level) may carry it further." + mode_note + volume_note;
+}
+
+/// None of the above: a stall. Well above the threshold the path is plainly not at a limit point;
+/// close to it, the curve is flattening and a limit point may lie just ahead.
+void name_stall(const StopContext& c, PressurePathResult& out, const std::string& mode_note,
+                const std::string& volume_note) {
+  out.outcome = PathOutcome::stalled;
+  out.diagnosis = "solver stalled at " + fmt(c.last.pressure_kPa) + " kPa (" + to_string(out.path.failure) + ": " +
+                  out.path.message + ") while dp/dV is " + fmt(100 * c.ratio, 3) + " % of its initial value" +
+                  (c.flattening ? ": the pressure-volume curve is flattening and a limit point (ballooning) may lie "
+                                  "just ahead, but none was reached. "
+                                : ", so this is not a limit point. ") +
+                  "Retry with a finer mesh, a smaller solver.initial_increment_fraction or more Newton iterations." +
+                  mode_note + volume_note;
+}
+
 /// Names why a path stopped short where volume control did not settle it: a material failure, a
 /// limit point (dp/dV, the lowest mode, a fold just ahead), an inverted element, or a stall.
 void name_the_stop(const StopContext& c, const Vector& x, PressurePathResult& out) {
   if (named_material_failure(c, x, out)) return;
-  const EnergyProblem& problem = c.problem;
   const PressurePathSpec& spec = c.spec;
-  const PressureState& last = c.last;
-  const double ratio = c.ratio;
-  LinearSolver& solver = c.solver;
-  const auto& set_pressures = c.set_pressures;
-  const Vector& x_stall = c.x_stall;
-  const bool flattened = c.flattened, flattening = c.flattening;
-  const ElasticForm* body = c.body;
   const std::string mode_note = c.flattening ? std::string() : lowest_mode_note(c, out);
   const bool local_instability = out.lowest_eigenvalue_ratio > 0 && out.lowest_eigenvalue_ratio < spec.limit.lowest_mode_fraction;
   const std::string volume_note = out.diagnosis;
   // A fold that neither dp/dV nor the lowest eigenvalue shows: one of the few lowest eigenvalues
   // falling to zero just ahead (fem/solver/fold_estimate.hpp), at the last converged state.
   FoldEstimate fold;
-  if (!flattened && !local_instability && spec.limit.check_lowest_mode && spec.limit.fold_margin > 0 &&
+  if (!c.flattened && !local_instability && spec.limit.check_lowest_mode && spec.limit.fold_margin > 0 &&
       out.history.size() >= 2) {
-    fold = estimate_fold(problem, solver, x_stall, last.pressure_kPa / spec.max_pressure_kPa, set_pressures,
+    fold = estimate_fold(c.problem, c.solver, c.x_stall, c.last.pressure_kPa / spec.max_pressure_kPa, c.set_pressures,
                          spec.limit.fold_modes);
-    set_pressures(out.reached_pressure_kPa / spec.max_pressure_kPa);
+    c.set_pressures(out.reached_pressure_kPa / spec.max_pressure_kPa);
   }
   const double fold_kPa = std::max(fold.load * spec.max_pressure_kPa, out.reached_pressure_kPa);
-  const bool fold_ahead = fold.found && fold_kPa <= last.pressure_kPa * (1 + spec.limit.fold_margin);
-  if (flattened) {
-    out.outcome = PathOutcome::limit_point;
-    out.limit_kind = LimitKind::pressure_volume;
-    out.estimated_limit_pressure_kPa = last.pressure_kPa;
-    // Peak of the quadratic p(V) through the last two states' slopes.
-    if (out.history.size() >= 2) {
-      const PressureState& prev = out.history[out.history.size() - 2];
-      const double dV = last.chamber_volume_mm3 - prev.chamber_volume_mm3;
-      const double c = dV != 0.0 ? (last.pv_stiffness_kPa_per_mm3 - prev.pv_stiffness_kPa_per_mm3) / dV : 0.0;
-      if (c < 0.0 && last.pv_stiffness_kPa_per_mm3 > 0.0)
-        out.estimated_limit_pressure_kPa = last.pressure_kPa - last.pv_stiffness_kPa_per_mm3 * last.pv_stiffness_kPa_per_mm3 / (2 * c);
-    }
-    // Volume control may have climbed past the last pressure-controlled state: the peak is no lower.
-    out.estimated_limit_pressure_kPa = std::max(out.estimated_limit_pressure_kPa, out.reached_pressure_kPa);
-    out.diagnosis = "limit point (ballooning): the pressure-volume curve flattens at " + fmt(last.pressure_kPa) +
-                    " kPa (dp/dV fell to " + fmt(100 * ratio, 3) + " % of its initial value" +
-                    (last.tangent_positive_definite ? "" : ", tangent no longer positive definite") +
-                    "); estimated peak pressure " + fmt(out.estimated_limit_pressure_kPa) +
-                    " kPa. Pressure control cannot pass it; this is the burst mode of this design." + volume_note;
-  } else if (local_instability) {
-    out.outcome = PathOutcome::limit_point;
-    out.limit_kind = LimitKind::lowest_mode;
-    out.estimated_limit_pressure_kPa = last.pressure_kPa;
-    out.diagnosis = "local limit point at " + fmt(last.pressure_kPa) + " kPa: pressure control stopped (" +
-                    to_string(out.path.failure) + ") where the tangent's lowest mode has lost almost all its "
-                    "stiffness, while dp/dV of the loaded volume, " + fmt(100 * ratio, 3) +
-                    " % of its initial value, is above the limit-point threshold: an instability the loaded volume "
-                    "barely shows (in a 3CA, a chamber wall ballooning between two rings). The burst pressure is at "
-                    "or just above this one." + mode_note;
-  } else if (fold_ahead) {
-    out.outcome = PathOutcome::limit_point;
-    out.limit_kind = LimitKind::fold;
-    out.estimated_limit_pressure_kPa = fold_kPa;
-    std::string where;
-    if (spec.node_dimension > 0) {
-      const ModeExtent e = mode_extent(fold.mode, spec.node_dimension);
-      where = ", a mode that moves " + fmt(100 * e.participation, 2) + " % of the nodes, most at " +
-              node_location(problem.reference_positions(), e.peak_node, spec.node_dimension);
-    }
-    out.diagnosis = "local limit point (fold) at " + fmt(fold_kPa) + " kPa: pressure control stopped at " +
-                    fmt(last.pressure_kPa) + " kPa (" + to_string(out.path.failure) + ") where the tangent's eigenvalue " +
-                    std::to_string(fold.mode_index + 1) + " of " + std::to_string(fold.eigenvalues_computed) + where +
-                    ", falls to zero " + fmt(fold_kPa - last.pressure_kPa, 3) + " kPa ahead (" + fmt(fold.eigenvalue, 3) +
-                    " N/mm, falling by " + fmt(-fold.rate / spec.max_pressure_kPa, 3) +
-                    " N/mm per kPa: the square root of the distance to the fold). The path folds there, an instability "
-                    "the loaded volume barely shows (dp/dV " + fmt(100 * ratio, 3) +
-                    " % of its initial value): the burst pressure of this design." + mode_note + volume_note;
-  } else if (out.path.failure == Failure::inverted_element && out.path.failed_element >= 0 && body) {
-    // No limit point near, but the step can be cut no further without turning an element inside out:
-    // an element failure, named with its place, not a stall.
-    out.outcome = PathOutcome::element_inversion;
-    out.inverted_element = out.path.failed_element;
-    const std::string where =
-        spec.node_dimension > 0 ? " (" + node_location(problem.reference_positions(),
-                                                       body->element_corner_node(out.inverted_element),
-                                                       spec.node_dimension) + ")"
-                                : "";
-    out.diagnosis = "element inversion at " + fmt(last.pressure_kPa) + " kPa: every step beyond it, down to the " +
-                    "smallest increment, turns element " + std::to_string(out.inverted_element) + where +
-                    " inside out (" + out.path.message + ") while dp/dV is " + fmt(100 * ratio, 3) +
-                    " % of its initial value, so no limit point is near: the mesh cannot follow the deformation "
-                    "there (a fold or a crease of the silicone, or a contact the model does not have). A finer mesh "
-                    "(mesh.level) may carry it further." + mode_note + volume_note;
-  } else {
-    out.outcome = PathOutcome::stalled;
-    // Well above the threshold the path is plainly not at a limit point; close to it,
-    // the curve is flattening and a limit point may lie just ahead.
-    out.diagnosis = "solver stalled at " + fmt(last.pressure_kPa) + " kPa (" + to_string(out.path.failure) + ": " +
-                    out.path.message + ") while dp/dV is " + fmt(100 * ratio, 3) + " % of its initial value" +
-                    (flattening ? ": the pressure-volume curve is flattening and a limit point (ballooning) may lie "
-                                  "just ahead, but none was reached. "
-                                : ", so this is not a limit point. ") +
-                    "Retry with a finer mesh, a smaller solver.initial_increment_fraction or more Newton iterations." +
-                    mode_note + volume_note;
-  }
+  const bool fold_ahead = fold.found && fold_kPa <= c.last.pressure_kPa * (1 + spec.limit.fold_margin);
+  if (c.flattened) name_ballooning(c, out, volume_note);
+  else if (local_instability) name_lowest_mode_limit(c, out, mode_note);
+  else if (fold_ahead) name_fold(c, fold, fold_kPa, out, mode_note, volume_note);
+  else if (out.path.failure == Failure::inverted_element && out.path.failed_element >= 0 && c.body)
+    name_inversion(c, out, mode_note, volume_note);
+  else name_stall(c, out, mode_note, volume_note);
 }
 
 /// The solver's running totals into the result: taken after pressure control and again after
