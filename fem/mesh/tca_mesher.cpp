@@ -132,16 +132,12 @@ SectionGeometry lerp(const SectionGeometry& a, const SectionGeometry& b, double 
 
 constexpr double kMaxConnectorLayer = 20.0;  // mm per element layer in a (stiff) connector at level 1
 
-/// Meshes a stack of segments and connectors, bottom to top. Connectors take the
-/// sections of the segments they join (blended linearly through their thickness), so
-/// every interface conforms; a connector at an end of the stack copies its one neighbour.
-Mesh mesh_stack(const std::vector<StackPiece>& pieces, int actuators, int chamber_count, const SolidMeshOptions& options,
-                const std::vector<std::string>& chamber_names) {
-  if (options.level < 1 || options.axial_level < 0) throw std::logic_error("mesh level must be >= 1");
-  const int axial_level = layers_level(options.level, options.axial_level);
-  const double angle = options.first_axis_angle_rad;
-  // Section sizes at the bottom and top of every piece.
-  std::vector<SectionGeometry> bottom(pieces.size()), top(pieces.size());
+/// Every piece's section at its bottom and top: a segment's own (a cell's at its ring centre); a
+/// connector takes the sections of the segments it joins, or at an end of the stack its one neighbour's.
+void piece_end_sections(const std::vector<StackPiece>& pieces, double angle, std::vector<SectionGeometry>& bottom,
+                        std::vector<SectionGeometry>& top) {
+  bottom.assign(pieces.size(), {});
+  top.assign(pieces.size(), {});
   for (std::size_t i = 0; i < pieces.size(); ++i)
     if (pieces[i].segment) {
       const auto& rra = pieces[i].segment->actuator;
@@ -155,27 +151,17 @@ Mesh mesh_stack(const std::vector<StackPiece>& pieces, int actuators, int chambe
       bottom[i] = i > 0 ? top[i - 1] : bottom[i + 1];
       top[i] = i + 1 < pieces.size() ? bottom[i + 1] : top[i - 1];
     }
-  const auto geometry = [&](double z) {
-    for (std::size_t i = 0; i < pieces.size(); ++i) {
-      const auto& p = pieces[i];
-      if (z > p.z1 + 1e-9 * (1 + std::abs(p.z1)) && i + 1 < pieces.size()) continue;
-      if (p.segment && p.cell_ring > 0)
-        return segment_geometry(*p.segment, p.segment->actuator.ring_centre_z(p.cell_ring), angle);
-      if (p.segment)
-        return segment_geometry(*p.segment, std::clamp(z - p.z0 + p.local_z0, 0.0, p.segment->actuator.length_mm), angle);
-      return lerp(bottom[i], top[i], std::clamp((z - p.z0) / (p.z1 - p.z0), 0.0, 1.0));
-    }
-    return top.back();
-  };
-  const SectionGeometry reference = geometry(0.5 * (pieces.front().z0 + pieces.front().z1));
-  const ActuatorSection section(actuators, options.level, actuators == 3 && reference.hole_radius > 0, reference);
+}
 
-  struct LayerKind {
-    BandKind band;
-    int piece = 0;
-  };
-  std::vector<ExtrusionLayer> layers;
-  std::vector<LayerKind> kinds;
+/// The stack's element layers, bottom to top, each with its band (ring, gap, cap) and piece: a
+/// segment's bands (a cell's, or the actuator's clipped to the piece), a connector's layers at most
+/// kMaxConnectorLayer mm at level 1.
+struct LayerKind {
+  BandKind band;
+  int piece = 0;
+};
+void stack_layers(const std::vector<StackPiece>& pieces, int axial_level, std::vector<ExtrusionLayer>& layers,
+                  std::vector<LayerKind>& kinds) {
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const auto& p = pieces[i];
     if (!p.segment) {
@@ -198,16 +184,59 @@ Mesh mesh_stack(const std::vector<StackPiece>& pieces, int actuators, int chambe
       kinds.push_back({band_kinds[b], static_cast<int>(i)});
     }
   }
+}
 
-  // Half models keep the quads on the y ≥ 0 side (y = 0 is made of element edges).
-  const auto x_ref = section.positions(reference);
+/// The section's quads a model keeps: all, or for a half model those on the y ≥ 0 side (y = 0 is made
+/// of element edges).
+std::vector<char> kept_quads(const ActuatorSection& section, const SectionGeometry& reference, bool half) {
   std::vector<char> kept(section.num_quads(), 1);
-  if (options.half)
-    for (int q = 0; q < section.num_quads(); ++q) {
-      double y = 0;
-      for (int k = 0; k < 4; ++k) y += x_ref[section.quads()[q][k]].y() / 4;
-      kept[q] = y > 0;
+  if (!half) return kept;
+  const auto x_ref = section.positions(reference);
+  for (int q = 0; q < section.num_quads(); ++q) {
+    double y = 0;
+    for (int k = 0; k < 4; ++k) y += x_ref[section.quads()[q][k]].y() / 4;
+    kept[q] = y > 0;
+  }
+  return kept;
+}
+
+/// The mesh's part names: tube and rings, the sheath of a 3CA, a connector where the stack has one.
+std::vector<std::string> stack_parts(const std::vector<StackPiece>& pieces, bool with_core) {
+  std::vector<std::string> parts = {"tube", "rings"};
+  if (with_core) parts.push_back("sheath");
+  if (std::any_of(pieces.begin(), pieces.end(), [](const StackPiece& p) { return !p.segment; }))
+    parts.push_back("connector");
+  return parts;
+}
+
+/// Meshes a stack of segments and connectors, bottom to top. Connectors take the
+/// sections of the segments they join (blended linearly through their thickness), so
+/// every interface conforms; a connector at an end of the stack copies its one neighbour.
+Mesh mesh_stack(const std::vector<StackPiece>& pieces, int actuators, int chamber_count, const SolidMeshOptions& options,
+                const std::vector<std::string>& chamber_names) {
+  if (options.level < 1 || options.axial_level < 0) throw std::logic_error("mesh level must be >= 1");
+  const int axial_level = layers_level(options.level, options.axial_level);
+  const double angle = options.first_axis_angle_rad;
+  std::vector<SectionGeometry> bottom, top;
+  piece_end_sections(pieces, angle, bottom, top);
+  const auto geometry = [&](double z) {
+    for (std::size_t i = 0; i < pieces.size(); ++i) {
+      const auto& p = pieces[i];
+      if (z > p.z1 + 1e-9 * (1 + std::abs(p.z1)) && i + 1 < pieces.size()) continue;
+      if (p.segment && p.cell_ring > 0)
+        return segment_geometry(*p.segment, p.segment->actuator.ring_centre_z(p.cell_ring), angle);
+      if (p.segment)
+        return segment_geometry(*p.segment, std::clamp(z - p.z0 + p.local_z0, 0.0, p.segment->actuator.length_mm), angle);
+      return lerp(bottom[i], top[i], std::clamp((z - p.z0) / (p.z1 - p.z0), 0.0, 1.0));
     }
+    return top.back();
+  };
+  const SectionGeometry reference = geometry(0.5 * (pieces.front().z0 + pieces.front().z1));
+  const ActuatorSection section(actuators, options.level, actuators == 3 && reference.hole_radius > 0, reference);
+  std::vector<ExtrusionLayer> layers;
+  std::vector<LayerKind> kinds;
+  stack_layers(pieces, axial_level, layers, kinds);
+  const std::vector<char> kept = kept_quads(section, reference, options.half);
   const bool with_core = actuators == 3;
   const int connector_part = with_core ? kSheath + 1 : kRings + 1;
   ExtrusionRules rules;
@@ -225,12 +254,7 @@ Mesh mesh_stack(const std::vector<StackPiece>& pieces, int actuators, int chambe
   };
   std::vector<Chamber> chambers;
   for (int i = 0; i < chamber_count; ++i) chambers.push_back({i + 1, chamber_names[i], {}, {}});
-  std::vector<std::string> parts = {"tube", "rings"};
-  if (with_core) parts.push_back("sheath");
-  bool has_connector = false;
-  for (const auto& p : pieces) has_connector = has_connector || !p.segment;
-  if (has_connector) parts.push_back("connector");
-  Mesh mesh = extrude_section(section, layers, rules, options.order, parts, chambers);
+  Mesh mesh = extrude_section(section, layers, rules, options.order, stack_parts(pieces, with_core), chambers);
   if (options.half) mesh.node_sets["symmetry"] = mesh.node_sets["plane_y0"];
   mesh.node_sets.erase("plane_y0");
   if (options.serendipity && options.order == 2) return serendipity_from_triquadratic(mesh);
