@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -20,8 +21,8 @@ std::string duration_text(double s) {
 }  // namespace
 
 ProgressBar::ProgressBar(std::ostream& out, std::string name, int total, int already_done,
-                         std::chrono::steady_clock::time_point start)
-    : out_(out), name_(std::move(name)), total_(total), done_(already_done),
+                         std::chrono::steady_clock::time_point start, int concurrency)
+    : out_(out), name_(std::move(name)), total_(total), done_(already_done), concurrency_(std::max(1, concurrency)),
       terminal_(&out == &std::cerr ? ::isatty(2) : &out == &std::cout ? ::isatty(1) : false),
       start_(start) {
   if (already_done > 0) out_ << name_ << ": " << already_done << " of " << total_ << " points already in the results file\n";
@@ -44,8 +45,10 @@ void ProgressBar::draw(const std::string& what) {
        << total_;
   if (failed_) line << " (" << failed_ << " failed)";
   line << "  " << duration_text(elapsed);
-  if (done_here_ > 0 && done_ < total_)
-    line << ", ETA " << duration_text(elapsed / done_here_ * (total_ - done_));
+  if (done_here_ > 0 && done_ < total_) {
+    const int side_by_side = std::min(concurrency_, total_ - (done_ - done_here_));  // this run's, at once
+    line << ", ETA " << duration_text(elapsed / std::max(done_here_, side_by_side) * (total_ - done_));
+  }
   if (terminal_) {
     out_ << "\r" << line.str() << "\033[K" << std::flush;
   } else if (done_here_ > 0) {
@@ -63,7 +66,7 @@ fem::TaskProgress task_progress(std::ostream& out, std::string name) {
   // fem::parallel_tasks calls one at a time.
   auto bar = std::make_shared<std::unique_ptr<ProgressBar>>();
   return [&out, name = std::move(name), bar, start = std::chrono::steady_clock::now()](int done, int total) {
-    if (!*bar) *bar = std::make_unique<ProgressBar>(out, name, total, 0, start);
+    if (!*bar) *bar = std::make_unique<ProgressBar>(out, name, total, 0, start, fem::thread_count());
     (*bar)->advance(false, "");
     if (done == total) (*bar)->finish();
   };

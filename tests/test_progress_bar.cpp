@@ -60,3 +60,21 @@ TEST_CASE("parallel_tasks tells its progress once per task, one call at a time, 
   }
   softarm::fem::set_thread_count(saved);
 }
+
+TEST_CASE("With points side by side, the first to finish does not multiply the ETA by their number", "[progress]") {
+  // 15 cells two at a time, the first done after 100 s: the second is about done too, so 14 left take
+  // about 7 × 100 s, not the 14 × 100 s one at a time would.
+  const auto hundred_seconds_ago = std::chrono::steady_clock::now() - std::chrono::seconds(100);
+  std::ostringstream two, one;
+  softarm::studies::ProgressBar side_by_side(two, "cells", 15, 0, hundred_seconds_ago, 2);
+  side_by_side.advance(false, "");
+  softarm::studies::ProgressBar alone(one, "cells", 15, 0, hundred_seconds_ago, 1);
+  alone.advance(false, "");
+  INFO(two.str() << one.str());
+  CHECK(two.str().find("ETA 11 min 40 s") != std::string::npos);  // 14 × 100 s / 2
+  CHECK(one.str().find("ETA 23 min 20 s") != std::string::npos);  // 14 × 100 s
+  // Once as many have finished as run at once, the rate is the points finished over the time.
+  side_by_side.advance(false, "");
+  side_by_side.advance(false, "");
+  CHECK(two.str().find("ETA 6 min 40 s") != std::string::npos);  // 12 × 100 s / 3
+}
