@@ -140,6 +140,45 @@ double spatial_cell_rod_mass_kg(const SpatialCellRodSpec& spec) {
 }
 
 namespace {
+/// The shape under the intervals' moments and tensions, integrated from the clamp (at height
+/// `length_mm`) down: each interval's curvature and stretch, and the nodes' positions and frames.
+void shape_under(const std::vector<IntervalSection>& sec, const std::vector<Vec3>& moment,
+                 const std::vector<double>& tension, double length_mm, std::vector<Vec3>& r, std::vector<Mat3>& R,
+                 std::vector<Vec3>& curvature, std::vector<double>& stretches) {
+  const int n = static_cast<int>(sec.size());
+  r[0] = Vec3(0, 0, length_mm);
+  R[0] = Mat3::Identity();
+  for (int i = 0; i < n; ++i) {
+    const IntervalSection& s = sec[i];
+    const Vec3 local = R[i].transpose() * moment[i];
+    Vec3 k = s.free_curvature;
+    k.head<2>() += s.bending * local.head<2>();
+    k.z() += s.torsion * local.z();
+    const double stretch = s.free_stretch + s.axial * tension[i];
+    curvature[i] = k, stretches[i] = stretch;
+    const Mat3 half = R[i] * rotation_exp(-0.5 * s.length * k);
+    R[i + 1] = R[i] * rotation_exp(-s.length * k);
+    r[i + 1] = r[i] - s.length * stretch * half.col(2);
+  }
+}
+
+/// The weights' moments and tensions at each interval's midpoint (masses lumped there) on the shape
+/// r, R: the tip's weight `tip_force` (N) and each interval's mass under gravity g (kg · m/s² = N).
+void weights_moments(const std::vector<IntervalSection>& sec, const Vec3& tip_force, const Vec3& g,
+                     const std::vector<Vec3>& r, const std::vector<Mat3>& R, std::vector<Vec3>& moment,
+                     std::vector<double>& tension) {
+  const int n = static_cast<int>(sec.size());
+  Vec3 force = tip_force, about_origin = r[n].cross(force);
+  for (int i = n - 1; i >= 0; --i) {
+    const Vec3 at = 0.5 * (r[i] + r[i + 1]);
+    moment[i] = at.cross(force) - about_origin;  // −Σ (r_j − at) × f_j over the weights below
+    tension[i] = -force.dot(R[i].col(2));
+    const Vec3 f = sec[i].mass * g;
+    about_origin += at.cross(f);
+    force += f;
+  }
+}
+
 /// The shape–moment fixed point at the spec's full weights, from `start`'s moments (else none), within
 /// `most_iterations`.
 SpatialCellRodState settle(const SpatialCellRodSpec& spec, double level, const SpatialCellRodState* start,
@@ -157,7 +196,6 @@ SpatialCellRodState settle(const SpatialCellRodSpec& spec, double level, const S
     out.piece_first_node.push_back(first[p]);
     out.piece_last_node.push_back(p + 1 < spec.pieces.size() ? first[p + 1] : n);
   }
-  const Vec3& g = spec.gravity_m_s2;  // kg · m/s² = N
   std::vector<Vec3> moment(n, Vec3::Zero()), next(n);
   std::vector<double> tension(n, 0.0);
   if (start && static_cast<int>(start->moment_Nmm.size()) == n) moment = start->moment_Nmm;
@@ -180,32 +218,9 @@ SpatialCellRodState settle(const SpatialCellRodSpec& spec, double level, const S
   Vec3 last_tip = Vec3::Constant(1e300);
   for (int it = 1; it <= most_iterations; ++it) {
     for (int i = 0; i < n; ++i) moment[i] = x.segment<3>(3 * i), tension[i] = x[3 * n + i];
-    // The shape under the current moments, from the clamp down.
-    r[0] = Vec3(0, 0, spatial_cell_rod_length_mm(spec));
-    R[0] = Mat3::Identity();
-    for (int i = 0; i < n; ++i) {
-      const IntervalSection& s = sec[i];
-      const Vec3 local = R[i].transpose() * moment[i];
-      Vec3 k = s.free_curvature;
-      k.head<2>() += s.bending * local.head<2>();
-      k.z() += s.torsion * local.z();
-      const double stretch = s.free_stretch + s.axial * tension[i];
-      curvature[i] = k, stretches[i] = stretch;
-      const Mat3 half = R[i] * rotation_exp(-0.5 * s.length * k);
-      R[i + 1] = R[i] * rotation_exp(-s.length * k);
-      r[i + 1] = r[i] - s.length * stretch * half.col(2);
-    }
-    // The weights' moments and tension at each interval's midpoint (masses lumped there).
+    shape_under(sec, moment, tension, spatial_cell_rod_length_mm(spec), r, R, curvature, stretches);
     std::vector<double> next_tension(n);
-    Vec3 force = spec.tip_mass_kg * g, about_origin = r[n].cross(force);
-    for (int i = n - 1; i >= 0; --i) {
-      const Vec3 at = 0.5 * (r[i] + r[i + 1]);
-      next[i] = at.cross(force) - about_origin;  // −Σ (r_j − at) × f_j over the weights below
-      next_tension[i] = -force.dot(R[i].col(2));
-      const Vec3 f = sec[i].mass * g;
-      about_origin += at.cross(f);
-      force += f;
-    }
+    weights_moments(sec, spec.tip_mass_kg * spec.gravity_m_s2, spec.gravity_m_s2, r, R, next, next_tension);
     out.iterations = it;
     if ((r[n] - last_tip).norm() < 1e-9) {
       out.ok = true;
