@@ -42,27 +42,30 @@ EndFaceSupport spl_end_support(int n, TcaEnd end) {
   return end == TcaEnd::bottom && n == 2 ? EndFaceSupport::free : EndFaceSupport::bonded;
 }
 
-SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::function<void(TcaSceneSpec&)>& adjust,
-                   bool with_torsion, const TaskSpread& spread, const TaskProgress& progress) {
-  const auto t0 = std::chrono::steady_clock::now();
-  SplCells out;
-  out.rod.gravity_m_s2 = spec.gravity_m_s2;
-  out.rod.tip_mass_kg = spec.tip_mass_kg;
-  // Pieces from the shoulder: connector, segment 1, connector, segment 2, connector, segment 3;
-  // a job per cell of every segment.
-  struct Job {
-    int segment, ring;
-    std::size_t piece;
-  };
-  struct EndJob {
-    int segment;
-    TcaEnd end;
-    EndFaceSupport face;
-    std::size_t piece;
-  };
-  std::vector<Job> jobs;
-  std::vector<EndJob> end_jobs;
+namespace {
+/// The cells an SPL needs: a job per ring-pitch cell of every segment and, where the segment has
+/// room, one per end (each with the face its connector or the free tip gives it), on each
+/// segment's cell scene.
+struct CellJob {
+  int segment, ring;
+  std::size_t piece;
+};
+struct EndCellJob {
+  int segment;
+  TcaEnd end;
+  EndFaceSupport face;
+  std::size_t piece;
+};
+struct CellPlan {
+  std::vector<CellJob> cells;
+  std::vector<EndCellJob> ends;
   std::array<TcaSceneSpec, 3> scenes;
+};
+
+/// The rod's pieces from the shoulder (connector, segment 1, connector, segment 2, connector, segment
+/// 3) into `out`, and the plan of their cells; false (with out.failure) for a segment without rings.
+bool plan_cells(const SplSceneSpec& spec, int cell_levels, const std::function<void(TcaSceneSpec&)>& adjust,
+                SplCells& out, CellPlan& plan) {
   for (const RodPiece& piece : spl_rod_pieces(spec.design, spec.connector_material)) {
     SpatialCellPiece p;
     if (piece.kind == RodPiece::Kind::connector) {
@@ -72,38 +75,43 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::functio
       continue;
     }
     const int n = static_cast<int>(out.rod.pieces.size()) / 2;
-    scenes[n] = spl_segment_cell_scene(spec, n, cell_levels);
-    if (adjust) adjust(scenes[n]);
-    p.length_mm = scenes[n].design.actuator.length_mm;
-    p.cap_mm = scenes[n].design.actuator.end_cap_thickness_mm;
-    const int ring_count = scenes[n].design.actuator.ring_count;
+    TcaSceneSpec& scene = plan.scenes[n];
+    scene = spl_segment_cell_scene(spec, n, cell_levels);
+    if (adjust) adjust(scene);
+    p.length_mm = scene.design.actuator.length_mm;
+    p.cap_mm = scene.design.actuator.end_cap_thickness_mm;
+    const int ring_count = scene.design.actuator.ring_count;
     out.rings[n] = cell_rod_rings(ring_count);
     if (out.rings[n].empty()) {
       out.failure = "segment " + std::to_string(n + 1) + " has no rings: the cell rod needs a ring pitch";
-      return out;
+      return false;
     }
-    for (int ring : out.rings[n]) jobs.push_back({n, ring, out.rod.pieces.size()});
-    out.end_rings[n] = end_cell_rings(scenes[n].cell_rod_end_rings, ring_count);
-    if (scenes[n].cell_rod_end_rings > 0 && out.end_rings[n] == 0)
+    for (int ring : out.rings[n]) plan.cells.push_back({n, ring, out.rod.pieces.size()});
+    out.end_rings[n] = end_cell_rings(scene.cell_rod_end_rings, ring_count);
+    if (scene.cell_rod_end_rings > 0 && out.end_rings[n] == 0)
       out.end_cells_note += (out.end_cells_note.empty() ? "" : "; ") + std::string("segment ") + std::to_string(n + 1) +
-                            ": " + no_end_cells_note(scenes[n].cell_rod_end_rings, ring_count);
-    if (out.end_rings[n] > 0) {
+                            ": " + no_end_cells_note(scene.cell_rod_end_rings, ring_count);
+    if (out.end_rings[n] > 0)
       for (TcaEnd end : {TcaEnd::top, TcaEnd::bottom})
-        end_jobs.push_back({n, end, spl_end_support(n, end), out.rod.pieces.size()});
-    }
+        plan.ends.push_back({n, end, spl_end_support(n, end), out.rod.pieces.size()});
     out.rod.pieces.push_back(p);
   }
-  // The end cells, then the cells and each one's torsion at rest: side by side on this process'
-  // threads (parallel_tasks), or spread by `spread` (over MPI ranks) and returned as text.
-  const int end_count = static_cast<int>(end_jobs.size());
-  const int job_count = end_count + static_cast<int>(jobs.size());
+  return true;
+}
+
+/// The end cells, then the cells and each one's torsion at rest: side by side on this process'
+/// threads (parallel_tasks), or spread by `spread` (over MPI ranks) and returned as text.
+std::vector<CellJobResult> run_cells(const CellPlan& plan, const SplCells& out, bool with_torsion,
+                                     const TaskSpread& spread, const TaskProgress& progress) {
+  const int end_count = static_cast<int>(plan.ends.size());
+  const int job_count = end_count + static_cast<int>(plan.cells.size());
   const auto run_job = [&](int i) {
     if (i < end_count) {
-      const EndJob& e = end_jobs[i];
-      return run_end_cell_job(scenes[e.segment], e.end, out.end_rings[e.segment], e.face, with_torsion);
+      const EndCellJob& e = plan.ends[i];
+      return run_end_cell_job(plan.scenes[e.segment], e.end, out.end_rings[e.segment], e.face, with_torsion);
     }
-    const Job& c = jobs[i - end_count];
-    return run_cell_job(scenes[c.segment], c.ring, with_torsion);
+    const CellJob& c = plan.cells[i - end_count];
+    return run_cell_job(plan.scenes[c.segment], c.ring, with_torsion);
   };
   std::vector<CellJobResult> results(job_count);
   if (spread) {
@@ -112,9 +120,11 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::functio
   } else {
     parallel_tasks(job_count, [&](int i) { results[i] = run_job(i); }, progress);
   }
-  const auto end_result = [&](std::size_t i) -> const CellJobResult& { return results[i]; };
-  const auto cell_result = [&](std::size_t i) -> const CellJobResult& { return results[end_count + i]; };
-  // Each segment's lowest stop over its cells and end cells (the limit point's pressure where traced).
+  return results;
+}
+
+/// Each segment's lowest stop over its cells and end cells (the limit point's pressure where traced).
+void note_segment_stops(const CellPlan& plan, const std::vector<CellJobResult>& results, SplCells& out) {
   const auto note_stop = [&](int n, const CellJobResult& r) {
     const double reached = r.outcome == PathOutcome::limit_point && r.estimated_limit_pressure_kPa > 0
                                ? r.estimated_limit_pressure_kPa
@@ -126,29 +136,42 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::functio
     }
   };
   for (int n = 0; n < 3; ++n) {
-    const auto& p = scenes[n].chamber_pressure_kPa;
+    const auto& p = plan.scenes[n].chamber_pressure_kPa;
     out.segment_reached_kPa[n] = *std::max_element(p.begin(), p.end());
   }
-  for (std::size_t i = 0; i < end_jobs.size(); ++i) note_stop(end_jobs[i].segment, end_result(i));
-  for (std::size_t i = 0; i < jobs.size(); ++i) note_stop(jobs[i].segment, cell_result(i));
-  for (std::size_t i = 0; i < end_jobs.size(); ++i) {
-    const EndJob& e = end_jobs[i];
-    const CellJobResult& r = end_result(i);
+  const std::size_t end_count = plan.ends.size();
+  for (std::size_t i = 0; i < end_count; ++i) note_stop(plan.ends[i].segment, results[i]);
+  for (std::size_t i = 0; i < plan.cells.size(); ++i) note_stop(plan.cells[i].segment, results[end_count + i]);
+}
+
+/// The end cells' turns, elongations and twist compliances onto their pieces; false (with
+/// out.failure) for an end cell with no torsional stiffness.
+bool take_end_cells(const CellPlan& plan, const std::vector<CellJobResult>& results, SplCells& out) {
+  for (std::size_t i = 0; i < plan.ends.size(); ++i) {
+    const EndCellJob& e = plan.ends[i];
+    const CellJobResult& r = results[i];
     out.largest_end_cell_dofs = std::max(out.largest_end_cell_dofs, r.dofs);
     out.outcomes.push_back(r.outcome);
     const std::string name = "segment " + std::to_string(e.segment + 1) + ", " + (e.end == TcaEnd::top ? "top" : "bottom") + " end";
     if (r.outcome != PathOutcome::completed) out.notes += " (" + name + ": " + r.diagnosis + ")";
     if (std::isnan(r.torsion)) {
       out.failure = name + ": the end cell's tangent at rest is not positive definite (no torsional stiffness)";
-      return out;
+      return false;
     }
     out.rod.pieces[e.piece].ends.push_back(r.end);
     out.rod.pieces[e.piece].ends.back().twist_compliance_per_Nmm = r.torsion;
   }
-  out.end_cells = end_count;
-  for (std::size_t i = 0; i < jobs.size(); ++i) {
-    const CellJobResult& r = cell_result(i);
-    const int n = jobs[i].segment, ring = jobs[i].ring;
+  out.end_cells = static_cast<int>(plan.ends.size());
+  return true;
+}
+
+/// The cells' tables (with 1/GJ where asked) onto their pieces; false (with out.failure) for a cell
+/// with no torsional stiffness.
+bool take_cells(const CellPlan& plan, const std::vector<CellJobResult>& results, bool with_torsion, SplCells& out) {
+  const std::size_t end_count = plan.ends.size();
+  for (std::size_t i = 0; i < plan.cells.size(); ++i) {
+    const CellJobResult& r = results[end_count + i];
+    const int n = plan.cells[i].segment, ring = plan.cells[i].ring;
     out.half_model[n] = r.half_model;
     out.largest_cell_dofs = std::max(out.largest_cell_dofs, r.dofs);
     ++out.cells;
@@ -158,12 +181,27 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::functio
     if (with_torsion && !(r.torsion > 0)) {
       out.failure = "segment " + std::to_string(n + 1) + ", ring " + std::to_string(ring) +
                     ": the cell's tangent at rest is not positive definite (no torsional stiffness)";
-      return out;
+      return false;
     }
-    auto& tables = out.rod.pieces[jobs[i].piece].cells;
+    auto& tables = out.rod.pieces[plan.cells[i].piece].cells;
     tables.push_back(r.cell);
     tables.back().torsion_compliance_per_Nmm2 = with_torsion ? 1 / r.torsion : 0.0;
   }
+  return true;
+}
+}  // namespace
+
+SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::function<void(TcaSceneSpec&)>& adjust,
+                   bool with_torsion, const TaskSpread& spread, const TaskProgress& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SplCells out;
+  out.rod.gravity_m_s2 = spec.gravity_m_s2;
+  out.rod.tip_mass_kg = spec.tip_mass_kg;
+  CellPlan plan;
+  if (!plan_cells(spec, cell_levels, adjust, out, plan)) return out;
+  const std::vector<CellJobResult> results = run_cells(plan, out, with_torsion, spread, progress);
+  note_segment_stops(plan, results, out);
+  if (!take_end_cells(plan, results, out) || !take_cells(plan, results, with_torsion, out)) return out;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
