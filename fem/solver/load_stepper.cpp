@@ -33,112 +33,158 @@ Vector extrapolate_state(const std::vector<double>& levels, const std::vector<co
   return x;
 }
 
+namespace {
+constexpr double kLandingTolerance = 1e-12;
+constexpr double kNoCeiling = std::numeric_limits<double>::infinity();
+
+/// The path's state between steps: the converged state x at `level` and up to two before it (the
+/// predictor's), the increment, and the ceiling: the lowest level of an unstable-branch failure not
+/// yet passed, with the halvings towards it since it was set.
+class PathFollower {
+ public:
+  PathFollower(const EnergyProblem& problem, Vector& x, LinearSolver& solver, const PathCallbacks& callbacks,
+               const NewtonSettings& newton, const StepSettings& settings, const PathStart& start, PathResult& result)
+      : problem_(problem), x_(x), solver_(solver), callbacks_(callbacks), newton_(newton), settings_(settings),
+        result_(result), level_(start.level), previous_level_(start.level), older_level_(start.level), previous_x_(x) {
+    if (start.earlier.size() > 2) throw std::logic_error("follow_load_path: at most two earlier states");
+    for (const auto& [earlier_level, earlier_x] : start.earlier) {
+      if (history_ >= 1) older_x_ = std::move(previous_x_), older_level_ = previous_level_;
+      previous_x_ = earlier_x, previous_level_ = earlier_level;
+      ++history_;
+    }
+    increment_ = start.increment > 0 ? start.increment : settings.initial_increment;
+    result_.reached_level = level_;
+  }
+
+  std::size_t landed() const { return landed_; }  // output levels landed on in this call
+
+  /// The next level towards `target`: a full increment (never leaving a sliver), but below a ceiling
+  /// half the distance to it instead of trying it again: near a limit point every failed try costs a
+  /// run of shifted factorisations, a converged half step a few cheap iterations (thesis 3CA: 2 of its
+  /// 4 failed tries at 310 kPa were repeats). A failure far from a limit point (a bad predictor) is
+  /// passed once the distance is small or halved kMaxHalvings times.
+  double next_level(double target) {
+    double next = next_step_level(level_, increment_, target);
+    constexpr int kMaxHalvings = 6;
+    if (ceiling_ - level_ < 2 * settings_.min_increment || halvings_ >= kMaxHalvings) ceiling_ = kNoCeiling;
+    if (level_ + 0.5 * (ceiling_ - level_) < next) {
+      next = level_ + 0.5 * (ceiling_ - level_);
+      ++halvings_;
+      ++result_.stats.halved_steps;
+    }
+    return next;
+  }
+
+  /// One step to `next`: with the secant (or quadratic) predictor first, then, if that fails and a
+  /// predictor was used, from the last converged state.
+  bool try_step(double next, bool lands) {
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      const bool predict = attempt == 0 && history_ >= 1 && level_ > previous_level_;
+      if (attempt == 1) ++result_.stats.second_starts;
+      Vector trial = predict ? predicted(next) : x_;
+      problem_.apply_constraints(trial, next);
+      NewtonReport report = solve_newton(problem_, trial, solver_, newton_);
+      result_.stats.newton_iterations += report.iterations;
+      if (settings_.verbose) {
+        std::cout << "  step to level " << std::defaultfloat << std::setprecision(6) << next
+                  << (predict ? "" : " (no predictor)") << "\n";
+        print_convergence_table(std::cout, report);
+      }
+      if (report.converged) {
+        accept(std::move(trial), next, lands, report);
+        return true;
+      }
+      result_.failure = report.failure;
+      result_.message = report.message;
+      result_.failed_element = report.failed_element;
+      failed_from_prediction_ = predict;
+      if (!predict) return false;  // the plain start failed too: nothing else to retry
+      // Newton met only indefinite tangents: there is no stable equilibrium near this load (past a
+      // limit point), wherever it starts from; the cut-back, not a second start, is what helps. On
+      // the thesis 3CA the plain start failed too in all 4 such retries.
+      if (report.failure == Failure::unstable_branch) return false;
+    }
+    return false;
+  }
+
+  /// After every attempt at `next` failed: the ceiling where the predicted start met only unstable
+  /// states, and the increment cut back from the last converged state; false where it falls below
+  /// the smallest (the load is set back to the last converged level).
+  bool cut_back(double next) {
+    result_.stats.failed_levels.push_back(next);
+    // Only a predicted start that failed says the path has no stable state near that level: a plain
+    // start (the first step from rest, 0.1 of the SPL pose's pressures) may fail merely by
+    // overshooting, and halving up to it cost that run 4 steps before 0.2 converged at once.
+    if (result_.failure == Failure::unstable_branch && failed_from_prediction_ && next < ceiling_)
+      ceiling_ = next, halvings_ = 0;
+    ++result_.stats.cutbacks;
+    increment_ = (next - level_) * settings_.cutback;
+    if (increment_ >= settings_.min_increment) return true;
+    callbacks_.apply_load(level_);
+    return false;
+  }
+
+ private:
+  const EnergyProblem& problem_;
+  Vector& x_;
+  LinearSolver& solver_;
+  const PathCallbacks& callbacks_;
+  const NewtonSettings& newton_;
+  const StepSettings& settings_;
+  PathResult& result_;
+  double level_, previous_level_, older_level_;
+  Vector previous_x_, older_x_;
+  int history_ = 0;  // converged states before x that the predictor may use (0, 1 or 2)
+  double increment_ = 0;
+  double ceiling_ = kNoCeiling;
+  int halvings_ = 0;
+  bool failed_from_prediction_ = false;  // the last failed attempt started from the predictor
+  std::size_t landed_ = 0;
+
+  Vector predicted(double next) const {
+    if (history_ >= 2 && previous_level_ > older_level_)
+      return extrapolate_state({older_level_, previous_level_, level_}, {&older_x_, &previous_x_, &x_}, next);
+    return extrapolate_state({previous_level_, level_}, {&previous_x_, &x_}, next);
+  }
+
+  /// The converged trial becomes the state; the increment grows after an easy step, shrinks after a
+  /// hard one.
+  void accept(Vector trial, double next, bool lands, const NewtonReport& report) {
+    if (history_ >= 1) older_x_ = std::move(previous_x_), older_level_ = previous_level_;
+    previous_x_ = x_;
+    previous_level_ = level_;
+    history_ = std::min(history_ + 1, 2);
+    x_ = std::move(trial);
+    level_ = next;
+    ++result_.stats.steps;
+    result_.reached_level = level_;
+    if (lands) ++landed_;
+    if (callbacks_.on_converged) callbacks_.on_converged(level_, x_, lands, report);
+    if (report.iterations <= settings_.easy_iterations)
+      increment_ = std::min(increment_ * settings_.growth, settings_.max_increment);
+    if (report.iterations >= settings_.hard_iterations) increment_ *= settings_.shrink;
+    if (callbacks_.on_increment) callbacks_.on_increment(increment_, result_.stats);
+  }
+};
+}  // namespace
+
 PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolver& solver,
                             const std::vector<double>& output_levels, const PathCallbacks& callbacks,
                             const NewtonSettings& newton, const StepSettings& settings, const PathStart& start) {
   PathResult result;
   result.stats = start.stats;
-  double level = start.level, previous_level = start.level, older_level = start.level;
-  Vector previous_x = x, older_x;
-  int history = 0;  // converged states before x that the predictor may use (0, 1 or 2)
-  if (start.earlier.size() > 2) throw std::logic_error("follow_load_path: at most two earlier states");
-  for (const auto& [earlier_level, earlier_x] : start.earlier) {
-    if (history >= 1) older_x = std::move(previous_x), older_level = previous_level;
-    previous_x = earlier_x, previous_level = earlier_level;
-    ++history;
-  }
-  double increment = start.increment > 0 ? start.increment : settings.initial_increment;
-  constexpr double kLandingTolerance = 1e-12;
-  std::size_t next_output = 0;  // the first output level above a resumed start (from rest: the first)
+  PathFollower path(problem, x, solver, callbacks, newton, settings, start, result);
+  std::size_t first_output = 0;  // the first output level above a resumed start (from rest: the first)
   if (start.resumed)
-    while (next_output < output_levels.size() && output_levels[next_output] - level <= kLandingTolerance) ++next_output;
-  result.reached_level = level;
-  constexpr double kNoCeiling = std::numeric_limits<double>::infinity();
-  double ceiling = kNoCeiling;  // lowest level of an unstable-branch failure not yet passed
-  int halvings = 0;             // steps cut to half the distance to the ceiling since it was set
-  bool failed_from_prediction = false;  // the last failed attempt started from the predictor
-
-  // One step to next_level: with the secant predictor first, then (if that
-  // fails and a predictor was used) from the last converged state.
-  auto try_step = [&](double next_level, bool lands) {
-    for (int attempt = 0; attempt < 2; ++attempt) {
-      const bool predict = attempt == 0 && history >= 1 && level > previous_level;
-      if (attempt == 1) ++result.stats.second_starts;
-      Vector trial = x;
-      if (predict && history >= 2 && previous_level > older_level)
-        trial = extrapolate_state({older_level, previous_level, level}, {&older_x, &previous_x, &x}, next_level);
-      else if (predict)
-        trial = extrapolate_state({previous_level, level}, {&previous_x, &x}, next_level);
-      problem.apply_constraints(trial, next_level);
-      NewtonReport report = solve_newton(problem, trial, solver, newton);
-      result.stats.newton_iterations += report.iterations;
-      if (settings.verbose) {
-        std::cout << "  step to level " << std::defaultfloat << std::setprecision(6) << next_level
-                  << (predict ? "" : " (no predictor)") << "\n";
-        print_convergence_table(std::cout, report);
-      }
-      if (!report.converged) {
-        result.failure = report.failure;
-        result.message = report.message;
-        result.failed_element = report.failed_element;
-        failed_from_prediction = predict;
-        if (!predict) return false;  // the plain start failed too: nothing else to retry
-        // Newton met only indefinite tangents: there is no stable equilibrium near this load
-        // (past a limit point), wherever it starts from; the cut-back, not a second start, is
-        // what helps. On the thesis 3CA the plain start failed too in all 4 such retries.
-        if (report.failure == Failure::unstable_branch) return false;
-        continue;
-      }
-      if (history >= 1) older_x = std::move(previous_x), older_level = previous_level;
-      previous_x = x;
-      previous_level = level;
-      history = std::min(history + 1, 2);
-      x = std::move(trial);
-      level = next_level;
-      ++result.stats.steps;
-      result.reached_level = level;
-      if (lands) ++next_output;
-      if (callbacks.on_converged) callbacks.on_converged(level, x, lands, report);
-      if (report.iterations <= settings.easy_iterations) increment = std::min(increment * settings.growth, settings.max_increment);
-      if (report.iterations >= settings.hard_iterations) increment *= settings.shrink;
-      if (callbacks.on_increment) callbacks.on_increment(increment, result.stats);
-      return true;
-    }
-    return false;
-  };
-
-  while (next_output < output_levels.size()) {
-    const double target = output_levels[next_output];
-    double next_level = next_step_level(level, increment, target);
-    // Below a level where Newton met only indefinite tangents, halve the distance to it
-    // instead of trying it again: near a limit point every failed try costs a run of
-    // shifted factorisations, a converged half step a few cheap iterations (thesis 3CA:
-    // 2 of its 4 failed tries at 310 kPa were repeats). A failure far from a limit point
-    // (a bad predictor) is passed once the distance is small or halved kMaxHalvings times.
-    constexpr int kMaxHalvings = 6;
-    if (ceiling - level < 2 * settings.min_increment || halvings >= kMaxHalvings) ceiling = kNoCeiling;
-    if (level + 0.5 * (ceiling - level) < next_level) {
-      next_level = level + 0.5 * (ceiling - level);
-      ++halvings;
-      ++result.stats.halved_steps;
-    }
+    while (first_output < output_levels.size() && output_levels[first_output] - start.level <= kLandingTolerance)
+      ++first_output;
+  while (first_output + path.landed() < output_levels.size()) {
+    const double target = output_levels[first_output + path.landed()];
+    const double next_level = path.next_level(target);
     const bool lands = target - next_level <= kLandingTolerance;
-
     callbacks.apply_load(next_level);
-    if (try_step(next_level, lands)) continue;
-    result.stats.failed_levels.push_back(next_level);
-    // Only a predicted start that failed says the path has no stable state near that level: a
-    // plain start (the first step from rest, 0.1 of the SPL pose's pressures) may fail merely by
-    // overshooting, and halving up to it cost that run 4 steps before 0.2 converged at once.
-    if (result.failure == Failure::unstable_branch && failed_from_prediction && next_level < ceiling)
-      ceiling = next_level, halvings = 0;
-    // Every attempt failed: cut back from the last converged state.
-    ++result.stats.cutbacks;
-    increment = (next_level - level) * settings.cutback;
-    if (increment < settings.min_increment) {
-      callbacks.apply_load(level);
-      return result;
-    }
+    if (path.try_step(next_level, lands)) continue;
+    if (!path.cut_back(next_level)) return result;
   }
   result.completed = true;
   result.failure = Failure::none;
