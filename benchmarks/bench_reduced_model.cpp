@@ -26,6 +26,7 @@
 #include "fem/scenes/rra_calibration.hpp"
 #include "objectives/arm_evaluation.hpp"
 #include "objectives/payload_capacity.hpp"
+#include "fem/core/angles.hpp"
 
 using namespace softarm;
 using Clock = std::chrono::steady_clock;
@@ -85,7 +86,7 @@ int main(int argc, char** argv) try {
     const auto t = Clock::now();
     rod.follow(load, 10, [&](double f, const fem::RodState& st) {
       p.push_back(f * 344.7);
-      angle.push_back(rod.tip_rotation(st, load) * 180 / M_PI);
+      angle.push_back(rod.tip_rotation(st, load) * softarm::fem::kDeg);
     });
     times.push_back(since(t));
   }
@@ -207,7 +208,7 @@ int main(int argc, char** argv) try {
     const Eigen::Vector3d uf = f.tip_displacement_mm, ur = rod_states[i].position.back();
     std::printf("  %12.1f  %7.3f  %7.3f  %15.2f  %15.2f  %12.3f  %12.3f\n", f.pressure_kPa,
                 f.bending_angle_deg, spatial.tilt_deg(rod_states[i], sl, tip),
-                std::atan2(uf.y(), uf.x()) * 180 / M_PI, std::atan2(ur.y(), ur.x()) * 180 / M_PI, uf.norm(), ur.norm());
+                std::atan2(uf.y(), uf.x()) * softarm::fem::kDeg, std::atan2(ur.y(), ur.x()) * softarm::fem::kDeg, uf.norm(), ur.norm());
   }
   return 0;
 } catch (const fem::InputError& e) {

@@ -20,12 +20,13 @@
 #include "fem/materials/material.hpp"
 #include "fem/reduced/arm_rod.hpp"
 #include "fem/scenes/tca_scene.hpp"
+#include "fem/core/angles.hpp"
 
 using namespace softarm::fem;
 namespace bench = softarm::bench;
 
 namespace {
-constexpr double kG = 9.80665, kDeg = 180 / 3.14159265358979323846;
+constexpr double kG = 9.80665, kDeg = softarm::fem::kDeg;
 
 struct Load {
   const char* name;

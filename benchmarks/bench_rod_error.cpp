@@ -51,6 +51,7 @@
 #include "fem/scenes/rra_calibration.hpp"
 #include "fem/scenes/tca_cell_rod.hpp"
 #include "objectives/solid_segment_check.hpp"
+#include "fem/core/angles.hpp"
 
 using namespace softarm;
 
@@ -87,7 +88,7 @@ double rod_bending_deg(const objectives::ArmCandidate& c, double p_kPa, const fe
   load.chamber_pressure_kPa = {{0.0, p_kPa / stiffening, p_kPa / stiffening}};
   load.gravity_m_s2 = {-kG / stiffening, 0.0};
   const fem::RodState st = rod.follow(load, 12);
-  return rod.tip_rotation(st, load) * 180 / 3.14159265358979323846;
+  return rod.tip_rotation(st, load) * softarm::fem::kDeg;
 }
 
 // --stiffness: the distal segment hanging under ten times its weight along its axis, unpressurised:

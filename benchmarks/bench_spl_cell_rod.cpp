@@ -39,6 +39,7 @@
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
 #include "fem/scenes/tca_cell.hpp"
+#include "fem/core/angles.hpp"
 
 using namespace softarm;
 
@@ -191,7 +192,7 @@ int main(int argc, char** argv) try {
       const Eigen::Matrix3d rel = r.joints[j].pose.rotation.transpose() * r.joints[j + 1].pose.rotation;
       const Eigen::AngleAxisd a(rel);
       std::printf("segment %zu bends %7.2f° about (%6.3f, %6.3f, %6.3f) in its top frame", j / 2 + 1,
-                  a.angle() * 57.29577951308232, a.axis().x(), a.axis().y(), a.axis().z());
+                  a.angle() * softarm::fem::kDeg, a.axis().x(), a.axis().y(), a.axis().z());
       if (!reference.is_null() && reference["joints"][j].contains("rotation_matrix")) {
         Eigen::Matrix3d top, bottom;
         for (int i = 0; i < 3; ++i)
@@ -200,7 +201,7 @@ int main(int argc, char** argv) try {
             bottom(i, k) = reference["joints"][j + 1]["rotation_matrix"][i][k].get<double>();
           }
         const Eigen::AngleAxisd b(top.transpose() * bottom);
-        std::printf("; reference %7.2f° about (%6.3f, %6.3f, %6.3f)", b.angle() * 57.29577951308232, b.axis().x(),
+        std::printf("; reference %7.2f° about (%6.3f, %6.3f, %6.3f)", b.angle() * softarm::fem::kDeg, b.axis().x(),
                     b.axis().y(), b.axis().z());
       }
       std::printf("\n");

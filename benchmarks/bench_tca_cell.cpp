@@ -28,6 +28,7 @@
 #include "fem/core/parallel.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/tca_cell.hpp"
+#include "fem/core/angles.hpp"
 
 using namespace softarm;
 
@@ -101,7 +102,7 @@ int main(int argc, char** argv) try {
                 "volume_mm3", "gap_mm", "EI_Nmm2", "EA_N", "kx_per_mm", "ky_per_mm", "Cxx", "Cyy");
     for (const auto& s : r.states) {
       std::printf("%12.2f %10.5f %14.6f %14.4f %12.1f %10.2e", s.pressure_kPa, s.stretch,
-                  s.curvature_per_mm * 180 / 3.14159265358979, s.curvature_per_mm * r.pitch_mm * 180 / 3.14159265358979,
+                  s.curvature_per_mm * softarm::fem::kDeg, s.curvature_per_mm * r.pitch_mm * softarm::fem::kDeg,
                   s.chamber_volume_mm3, s.plane_gap_mm);
       if (s.bending_compliance_per_Nmm2 > 0)
         std::printf(" %14.1f %12.2f", 1 / s.bending_compliance_per_Nmm2, 1 / s.axial_compliance_per_N);
@@ -122,7 +123,6 @@ int main(int argc, char** argv) try {
       if (std::sscanf(line.c_str(), "%lf,%lf", &p, &angle) == 2) reference[p] = angle;
   }
   std::vector<fem::TcaEndCellResult> ends;
-  constexpr double kDeg = 180 / 3.14159265358979;
   if (end_rings > 0)
     for (const fem::TcaEnd end : {fem::TcaEnd::bottom, fem::TcaEnd::top}) {
       const auto e = fem::run_tca_end_cell(spec, end, end_rings, fem::tca_scene_end_support(end));
@@ -145,10 +145,10 @@ int main(int argc, char** argv) try {
         if (const auto without = fem::solve_cell_rod(part, s.pressure_kPa); without.ok) {
           part.ends = {fem::end_table(e)};
           if (const auto with = fem::solve_cell_rod(part, s.pressure_kPa); with.ok)
-            cells_turn = without.bending_angle_deg - with.bending_angle_deg + s.rotation_rad * kDeg;
+            cells_turn = without.bending_angle_deg - with.bending_angle_deg + s.rotation_rad * softarm::fem::kDeg;
         }
-        std::printf("%12.2f %12.4f %14.4f %12.4f %14.4f\n", s.pressure_kPa, s.rotation_rad * kDeg, cells_turn,
-                    s.rotation_rad * kDeg - cells_turn, s.elongation_mm);
+        std::printf("%12.2f %12.4f %14.4f %12.4f %14.4f\n", s.pressure_kPa, s.rotation_rad * softarm::fem::kDeg, cells_turn,
+                    s.rotation_rad * softarm::fem::kDeg - cells_turn, s.elongation_mm);
       }
     }
   fem::CellRodSpec rod = fem::tca_cell_rod(spec, cells, ends);

@@ -8,6 +8,7 @@
 #include "engine/report/output_files.hpp"
 #include "fem/io/vtu_writer.hpp"
 #include "fem/mesh/tca_mesher.hpp"
+#include "fem/core/angles.hpp"
 
 namespace softarm::engine {
 namespace {
@@ -18,7 +19,7 @@ nlohmann::json pose_json(const fem::FacePose& pose) {
   return {{"position_mm", vector_json(pose.position_mm)},
           {"axis_tilt_deg", pose.tilt_deg},
           {"rotation_axis", vector_json(aa.axis())},
-          {"rotation_angle_deg", aa.angle() * 180 / 3.14159265358979323846},
+          {"rotation_angle_deg", aa.angle() * softarm::fem::kDeg},
           {"rotation_matrix", {{pose.rotation(0, 0), pose.rotation(0, 1), pose.rotation(0, 2)},
                                {pose.rotation(1, 0), pose.rotation(1, 1), pose.rotation(1, 2)},
                                {pose.rotation(2, 0), pose.rotation(2, 1), pose.rotation(2, 2)}}}};

@@ -9,10 +9,11 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include "fem/core/angles.hpp"
 
 namespace softarm::objectives {
 namespace {
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
+using fem::kDeg;
 constexpr double kHanging = -1.5707963267948966;  // clamp direction: the axis points down (−Z)
 
 fem::RodPiece segment_piece(const fem::TcaDesign& d) {

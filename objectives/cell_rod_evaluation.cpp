@@ -8,11 +8,12 @@
 #include "fem/core/number_text.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
 #include "objectives/solid_segment_check.hpp"
+#include "fem/core/angles.hpp"
 
 namespace softarm::objectives {
 namespace {
 using Clock = std::chrono::steady_clock;
-constexpr double kDeg = 57.295779513082320876;
+using fem::kDeg;
 // The payload's lift: the tip's turn between two load levels (1/32 of the ramp) above which the arm is
 // taken to snap through a fold (payload_capacity.cpp rejects tip jumps of over 20 deg likewise).
 constexpr double kMaxTurnPerLevel_deg = 20;

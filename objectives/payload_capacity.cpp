@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include "fem/core/angles.hpp"
 
 namespace softarm::objectives {
 namespace {
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
+using fem::kDeg;
 
 // One lift state: the tip at the lift angle at pressure p for tip mass m.
 struct LiftState {

@@ -7,10 +7,11 @@
 #include <tuple>
 
 #include "fem/scenes/chamber_stretch.hpp"
+#include "fem/core/angles.hpp"
 
 namespace softarm::studies {
 namespace {
-constexpr double kDeg = 57.295779513082320876;
+using fem::kDeg;
 
 /// g with g¹⁰ = g + 1, g > 1 (Newton from 1.1): the generalised golden ratio of Roberts' R₉.
 double roberts_ratio() {

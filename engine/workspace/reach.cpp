@@ -7,10 +7,11 @@
 #include "engine/optimiser/optimiser.hpp"
 #include "fem/scenes/chamber_stretch.hpp"
 #include "studies/workspace.hpp"
+#include "fem/core/angles.hpp"
 
 namespace softarm::engine {
 namespace {
-constexpr double kDeg = 57.295779513082320876;
+using fem::kDeg;
 constexpr double kAxisLever_mm = 100;  // ℓ: the axis' angle weighed as the travel of a point this far along it
 
 struct Pose {

@@ -7,10 +7,10 @@
 
 #include "fem/elements/axisymmetric_quad.hpp"
 #include "fem/elements/serendipity_quad.hpp"
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem {
 namespace {
-constexpr double kPi = 3.141592653589793;
 constexpr int kMaxDofs = 27;  // a 9-node facet in 3D
 
 // A facet's volume contribution and its exact derivatives with respect to its dofs

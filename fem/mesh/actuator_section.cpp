@@ -3,11 +3,11 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 Eigen::Vector2d direction(double angle) { return {std::cos(angle), std::sin(angle)}; }
 Eigen::Vector2d lerp(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double t) { return a + t * (b - a); }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem {
 namespace {
@@ -231,7 +232,6 @@ nlohmann::json to_json(const RraDesign& d) {
 }
 
 namespace {
-constexpr double kPi = 3.141592653589793;
 double frustum(double height, double r1, double r2) { return kPi * height * (r1 * r1 + r1 * r2 + r2 * r2) / 3; }
 }  // namespace
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem {
 namespace {
@@ -36,7 +37,7 @@ void validate_design(const TcaDesign& d, const std::string& field_prefix) {
 }
 }  // namespace
 
-double square_ring_side_mm(const RraDesign& design) { return design.ring_diameter_mm * std::sqrt(M_PI) / 2; }
+double square_ring_side_mm(const RraDesign& design) { return design.ring_diameter_mm * std::sqrt(kPi) / 2; }
 
 TcaParameters read_tca_parameters(JsonReader& g, bool radii_and_end) {
   TcaParameters p;

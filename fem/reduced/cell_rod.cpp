@@ -8,10 +8,10 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 }  // namespace

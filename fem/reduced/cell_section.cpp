@@ -5,11 +5,11 @@
 
 #include "fem/reduced/rod_section.hpp"
 #include "fem/reduced/section_geometry.hpp"
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem {
 using namespace section_geometry;
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
 CellSection tca_cell_section(const TcaDesign& design, double z, int cells, int subrows) {

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 // 8-point Gauss–Legendre on [−1, 1].
 constexpr double kGaussX[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,

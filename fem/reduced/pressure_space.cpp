@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 /// Chamber k's (0-based) angle from +x.
 double chamber_angle(int k) { return 2 * kPi * k / 3; }

@@ -4,11 +4,11 @@
 #include <cmath>
 
 #include "fem/reduced/rod_section.hpp"
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem {
 namespace {
 constexpr double kMm3ToKgPerGcm3 = 1e-6;  // mm³ × g/cm³ → kg
-constexpr double kPi = 3.14159265358979323846;
 
 // Trapezoid integral of f over the nodes [a, b].
 template <class F>

@@ -5,11 +5,11 @@
 
 #include "fem/reduced/confined_wall.hpp"
 #include "fem/reduced/section_geometry.hpp"
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem {
 using namespace section_geometry;
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
 bool in_end_cap(const RraDesign& d, double z) {

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <utility>
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem::section_geometry {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 Interval hull(Interval a, const Interval& b) {
   if (b.lo > b.hi) return a;

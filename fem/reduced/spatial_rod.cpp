@@ -9,12 +9,12 @@
 #include "fem/reduced/rod_continuation.hpp"
 #include "fem/reduced/rotation_vector.hpp"
 #include "fem/reduced/rod_section.hpp"
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem {
 namespace {
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
-constexpr double kDeg = 57.295779513082320876;
 }  // namespace
 
 Mat3 hanging_rod_frame() {

@@ -5,10 +5,10 @@
 
 #include "fem/reduced/fibre_law.hpp"
 #include "fem/scenes/rra_calibration.hpp"
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem {
 namespace {
-constexpr double kDeg = 57.295779513082320876;
 double since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }

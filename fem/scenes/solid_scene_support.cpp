@@ -8,10 +8,10 @@
 #include <limits>
 
 #include "fem/elements/reference_quadrature.hpp"
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem {
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kKgPerMm3PerGcm3 = 1e-6;
 
 std::string fmt(double v) {

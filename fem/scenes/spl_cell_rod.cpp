@@ -7,10 +7,10 @@
 #include "fem/core/parallel.hpp"
 #include "fem/reduced/rod_layout.hpp"
 #include "fem/scenes/tca_cell_rod.hpp"
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem {
 namespace {
-constexpr double kDeg = 57.295779513082320876;
 
 /// A node's pose from rest: position, rotation, and the tilt of its axis (z at rest).
 FacePose pose_at(const SpatialCellRodState& s, int node) {

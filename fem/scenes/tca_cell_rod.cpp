@@ -10,6 +10,7 @@
 #include "fem/core/parallel.hpp"
 #include "fem/scenes/fidelity.hpp"
 #include "fem/scenes/twist_compliance.hpp"
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem {
 
@@ -26,7 +27,6 @@ void use_cell_rod_rung(TcaSceneSpec& spec) {
 }
 
 namespace {
-constexpr double kDeg = 57.295779513082320876;
 
 /// The 3CA's cell rod through the spatial rod (spatial_cell_rod.hpp): its only piece the 3CA, its
 /// clamp at the top, every load in any direction; the bending angle is the tip axis' tilt from rest,

@@ -11,12 +11,12 @@
 #include "fem/forms/make_elastic_form.hpp"
 #include "fem/mesh/tca_mesher.hpp"
 #include "fem/post/face_measures.hpp"
+#include "fem/core/angles.hpp"
 
 namespace softarm::fem {
 namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 
