@@ -109,20 +109,23 @@ void judge_segment(SegmentMeasures& out, const std::vector<double>& chamber_stre
     out.burst_utilisation = u;
     previous_u = u, previous_p = p;
   }
+  bool limit_point_governs = false;  // the safe pressure is a limit point's, not a criterion's
   if (!out.rod_diagnosis.empty()) {
     const double reached = out.pressure_kPa.empty() ? 0.0 : out.pressure_kPa.back();
     if (out.safe_pressure_kPa < 0 || reached < out.safe_pressure_kPa) {
       out.safe_pressure_kPa = reached;
       out.governing = "limit point (rod)";
+      limit_point_governs = true;
     }
   }
   // The lone RRA's path met a limit point (ballooning caps) before the stretch the 3CA needs.
   if (cal.limit_point && (out.safe_pressure_kPa < 0 || cal.last_pressure_kPa < out.safe_pressure_kPa)) {
     out.safe_pressure_kPa = cal.last_pressure_kPa;
     out.governing = "limit point (RRA FEM)";
+    limit_point_governs = true;
   }
   // A limit point below the working pressure: utilisation as the pressure ratio (> 1).
-  if (out.safe_pressure_kPa >= 0 && out.governing.rfind("limit", 0) == 0)
+  if (out.safe_pressure_kPa >= 0 && limit_point_governs)
     out.burst_utilisation = std::max(out.burst_utilisation, s.working_pressure_kPa / std::max(out.safe_pressure_kPa, 1.0));
 }
 
