@@ -40,6 +40,7 @@ WorkspacePoint pose_point(const fem::SplPressureCells& cells, const std::array<d
   out.ok = s.ok;
   if (!s.ok) {
     out.why = s.diagnosis;
+    out.beyond_cells = s.beyond_tables;
     return out;
   }
   out.tip_mm = s.position.back();

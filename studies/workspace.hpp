@@ -46,6 +46,7 @@ struct WorkspacePoint {
   std::array<double, 9> pressure_kPa{};
   bool ok = false;
   std::string why;                      // where not ok: outside the cells' reach, or no equilibrium
+  bool beyond_cells = false;            // not ok because a segment lies past where its cells reached
   Eigen::Vector3d tip_mm = Eigen::Vector3d::Zero();
   Eigen::Vector3d tip_axis = Eigen::Vector3d::Zero();  // the tip face's outward normal (unit)
   double tip_tilt_deg = 0;              // from hanging straight down the rest axis

@@ -114,6 +114,27 @@ TEST_CASE("The short SPL's pressure cells: the arm's own cells on their rays, cl
     // Measured: 0.28 mm of the tip's 10.3 mm travel (2.8 %).
     CHECK((tip - reference).norm() < 0.05 * travel);
   }
+  SECTION("A segment past where its cells reached is told apart from a pressure out of range") {
+    // Segment 1's cells (piece 1: piece 0 is the shoulder's connector) cut to the first half of their
+    // levels on every ray, as if they had stopped at a limit point there.
+    SplPressureCells stopped = cells;
+    for (SplCells& ray : stopped.rays)
+      for (SpatialCellTable& t : ray.rod.pieces.at(1).cells) {
+        const std::size_t keep = (t.level.size() + 1) / 2;
+        t.level.resize(keep), t.stretch.resize(keep), t.axial_compliance_per_N.resize(keep);
+        t.curvature_per_mm.resize(keep), t.bending_compliance_per_Nmm2.resize(keep);
+      }
+    const std::array<double, 9> high = {150, 0, 0, 0, 0, 0, 0, 0, 0};
+    const PressureRod beyond = rod_at_pressures(stopped, high);
+    CHECK_FALSE(beyond.ok);
+    CHECK(beyond.beyond_cells);
+    CHECK(pose_at_pressures(stopped, high).beyond_tables);
+    CHECK(pose_at_pressures(cells, high).ok);  // the same pressures on the whole cells
+    std::array<double, 9> out_of_range{};
+    out_of_range[0] = 151;
+    CHECK_FALSE(rod_at_pressures(stopped, out_of_range).beyond_cells);
+    CHECK_FALSE(pose_at_pressures(stopped, out_of_range).beyond_tables);
+  }
   SECTION("The pressure cells refuse pressures outside their range") {
     std::array<double, 9> p{};
     p[4] = 151;

@@ -101,7 +101,7 @@ nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z
 std::pair<int, int> not_reached(const studies::WorkspaceResult& w) {
   int beyond = 0, other = 0;
   for (const studies::WorkspacePoint& p : w.points)
-    if (!p.ok) ++(p.why.find("beyond where its cells reached") != std::string::npos ? beyond : other);
+    if (!p.ok) ++(p.beyond_cells ? beyond : other);
   return {beyond, other};
 }
 

@@ -189,6 +189,7 @@ SpatialCellRodState settle(const SpatialCellRodSpec& spec, double level, const S
   std::vector<int> first;
   if (std::string why = sections_at(spec, level, sec, first); !why.empty()) {
     out.diagnosis = why;
+    out.beyond_tables = true;
     return out;
   }
   const int n = static_cast<int>(sec.size());

@@ -78,6 +78,7 @@ struct SpatialCellRodState {
   std::vector<Eigen::Vector3d> curvature_per_mm;
   int iterations = 0;                     // shape–moment fixed-point iterations
   bool ok = false;
+  bool beyond_tables = false;             // not ok because a level lies past a cell's table (else: not settled)
   std::string diagnosis;                  // why not ok
 };
 

@@ -154,6 +154,7 @@ PressureRod rod_at_pressures(const SplPressureCells& cells, const std::array<dou
       why << "segment " << n + 1 << " at " << p[3 * n] << ", " << p[3 * n + 1] << ", " << p[3 * n + 2]
           << " kPa: beyond where its cells reached along the nearby rays (a limit point or a stall)";
       out.why = why.str();
+      out.beyond_cells = true;
       return out;
     }
     ++n;
@@ -168,6 +169,7 @@ SpatialCellRodState pose_at_pressures(const SplPressureCells& cells, const std::
   if (!r.ok) {
     SpatialCellRodState s;
     s.diagnosis = r.why;
+    s.beyond_tables = r.beyond_cells;
     return s;
   }
   if (tip_mass_kg) r.rod.tip_mass_kg = *tip_mass_kg;

@@ -55,6 +55,7 @@ double segment_reach_kPa(const SplPressureCells& cells, int n);
 struct PressureRod {
   SpatialCellRodSpec rod;
   bool ok = false;
+  bool beyond_cells = false;  // not ok because a segment lies past where its cells reached
   std::string why;
 };
 PressureRod rod_at_pressures(const SplPressureCells& cells, const std::array<double, 9>& p_kPa);
