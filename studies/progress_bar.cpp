@@ -63,10 +63,12 @@ void ProgressBar::finish() {
 
 fem::TaskProgress task_progress(std::ostream& out, std::string name) {
   // Made at the first call, when the total is known, timed from now, when the tasks start;
-  // fem::parallel_tasks calls one at a time.
+  // fem::parallel_tasks calls one at a time. The threads are counted here, before the tasks: inside
+  // one, where the first call comes from, thread_count() is 1.
   auto bar = std::make_shared<std::unique_ptr<ProgressBar>>();
-  return [&out, name = std::move(name), bar, start = std::chrono::steady_clock::now()](int done, int total) {
-    if (!*bar) *bar = std::make_unique<ProgressBar>(out, name, total, 0, start, fem::thread_count());
+  return [&out, name = std::move(name), bar, start = std::chrono::steady_clock::now(),
+          side_by_side = fem::thread_count()](int done, int total) {
+    if (!*bar) *bar = std::make_unique<ProgressBar>(out, name, total, 0, start, side_by_side);
     (*bar)->advance(false, "");
     if (done == total) (*bar)->finish();
   };

@@ -78,3 +78,18 @@ TEST_CASE("With points side by side, the first to finish does not multiply the E
   side_by_side.advance(false, "");
   CHECK(two.str().find("ETA 6 min 40 s") != std::string::npos);  // 12 × 100 s / 3
 }
+
+TEST_CASE("task_progress counts the threads the tasks run on, not the one its first call comes from", "[progress]") {
+  // Four tasks of a second on two threads: the first line comes at ~1 s, with the second task about
+  // done too, so ~1.5 s left (said "2 s"); counted as one at a time it would say 3 s.
+  std::ostringstream out;
+  const int saved = softarm::fem::thread_count();
+  softarm::fem::set_thread_count(2);
+  const softarm::fem::TaskProgress progress = softarm::studies::task_progress(out, "cells");
+  softarm::fem::parallel_tasks(4, [](int) { std::this_thread::sleep_for(std::chrono::milliseconds(1000)); }, progress);
+  softarm::fem::set_thread_count(saved);
+  const auto lines = lines_of(out.str());
+  INFO(out.str());
+  REQUIRE(lines.size() == 4);
+  CHECK(lines[0].find("] 1/4  1 s, ETA 2 s") != std::string::npos);
+}
