@@ -56,7 +56,7 @@ WorkspacePoint pose_point(const fem::SplPressureCells& cells, const std::array<d
 
 std::vector<std::array<double, 9>> workspace_pressures(double max_kPa, int count) {
   std::vector<std::array<double, 9>> out;
-  for (int corner = 0; corner < 512 && static_cast<int>(out.size()) < count; ++corner) {
+  for (int corner = 0; corner < kWorkspaceCorners && static_cast<int>(out.size()) < count; ++corner) {
     std::array<double, 9> p{};
     for (int k = 0; k < 9; ++k) p[k] = (corner >> k) & 1 ? max_kPa : 0.0;
     out.push_back(p);

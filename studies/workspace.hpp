@@ -27,6 +27,9 @@
 
 namespace softarm::studies {
 
+/// The corners of [0, P]⁹, 2⁹, that the sampling visits first.
+inline constexpr int kWorkspaceCorners = 512;
+
 /// The first `count` pressure vectors (kPa) of the workspace's sampling in [0, max]⁹.
 std::vector<std::array<double, 9>> workspace_pressures(double max_kPa, int count);
 

@@ -8,7 +8,7 @@
 namespace softarm::engine {
 
 std::vector<std::size_t> margin_poses(const studies::WorkspaceResult& w, int count) {
-  constexpr std::size_t kCorners = 512;  // workspace_pressures: the corners of [0, P]⁹ come first
+  constexpr auto kCorners = static_cast<std::size_t>(studies::kWorkspaceCorners);
   std::vector<std::size_t> chosen;
   const auto full = [&] { return static_cast<int>(chosen.size()) >= count; };
   for (std::size_t i = kCorners; i < w.points.size() && !full(); ++i)
