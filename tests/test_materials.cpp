@@ -234,6 +234,25 @@ TEST_CASE("law identities: neo-Hookean, Mooney-Rivlin, Yeoh and Ogden agree wher
   }
 }
 
+TEST_CASE("a law's energy at given eigenvalues equals its jets' (the closed forms of Ogden and SVK)", "[materials]") {
+  // principal_energy_at() is what every Gauss point calls; Ogden and Saint Venant-Kirchhoff give it
+  // in closed form (fem/materials/ogden.cpp, saint_venant_kirchhoff.cpp), the others through the
+  // jets. The jets' principal_energy() is the reference: the same formula differentiated by the
+  // chain rule term by term.
+  const double triples[][3] = {{1, 1, 1},       {1.3, 1.3, 1.0 / 1.69}, {2.1, 0.8, 0.55},   {0.35, 1.9, 1.6},
+                               {4.0, 0.5, 0.5}, {1.0 + 1e-9, 1.0, 1.0}, {0.2, 6.5, 0.9},    {1.02, 0.97, 1.05}};
+  for (const auto& [name, law] : all_laws()) {
+    for (const auto& c : triples) {
+      INFO(name << " at c = (" << c[0] << ", " << c[1] << ", " << c[2] << ")");
+      const Jet3 jets = law->principal_energy(Jet3::variable(c[0], 0), Jet3::variable(c[1], 1), Jet3::variable(c[2], 2));
+      const Jet3 at = law->principal_energy_at(c[0], c[1], c[2]);
+      CHECK(std::abs(at.v - jets.v) <= 1e-12 * (1 + std::abs(jets.v)));
+      CHECK((at.g - jets.g).cwiseAbs().maxCoeff() <= 1e-11 * (1 + jets.g.cwiseAbs().maxCoeff()));
+      CHECK((at.h - jets.h).cwiseAbs().maxCoeff() <= 1e-11 * (1 + jets.h.cwiseAbs().maxCoeff()));
+    }
+  }
+}
+
 TEST_CASE("principal energy of split laws is isochoric", "[materials]") {
   // W̄(C̄) does not change under a pure dilatation F -> s F.
   const Mat3 F = test_deformations().back().F;

@@ -37,6 +37,13 @@ class HyperelasticLaw {
   /// (for split laws: the isochoric part only; J = sqrt(c1 c2 c3) inside).
   virtual Jet3 principal_energy(const Jet3& c1, const Jet3& c2, const Jet3& c3) const = 0;
 
+  /// The same energy with its gradient and Hessian in (c1, c2, c3) at given eigenvalues: what every
+  /// Gauss point asks for. By default principal_energy() on three variables; a law may give a closed
+  /// form that is cheaper than the jet arithmetic (Ogden: fem/materials/ogden.cpp).
+  virtual Jet3 principal_energy_at(double c1, double c2, double c3) const {
+    return principal_energy(Jet3::variable(c1, 0), Jet3::variable(c2, 1), Jet3::variable(c3, 2));
+  }
+
   /// Volumetric energy U(J); laws without the split return zeros.
   virtual VolumetricResponse volumetric(double J) const { return {}; }
   virtual bool has_volumetric_split() const { return false; }

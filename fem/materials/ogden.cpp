@@ -47,6 +47,39 @@ Jet3 Ogden::isochoric_energy(const IsochoricStretches& s) const {
   return W;
 }
 
+// Eq 3 in log eigenvalues ℓ_a = ln c_a: with ℓ̄ = (ℓ1 + ℓ2 + ℓ3)/3 (so that J^(2/3) = e^ℓ̄) each
+// term is k (Σ_a e_a − 3), e_a = c̄_a^β = e^(β(ℓ_a − ℓ̄)), k = 2μ/α², β = α/2. As ∂(ℓ_a − ℓ̄)/∂ℓ_b =
+// δ_ab − 1/3, with S = Σ_a e_a:
+//   ∂W/∂ℓ_b = k β (e_b − S/3),
+//   ∂²W/∂ℓ_b∂ℓ_c = k β² (δ_bc e_b − (e_b + e_c)/3 + S/9),
+// and back to c by ∂/∂c_b = (1/c_b) ∂/∂ℓ_b:
+//   f_b = (∂W/∂ℓ_b)/c_b,  f_bc = (∂²W/∂ℓ_b∂ℓ_c)/(c_b c_c) − δ_bc (∂W/∂ℓ_b)/c_b².
+// Three logarithms and 3N exponentials instead of 3N + 1 powers and the jets' products.
+Jet3 Ogden::principal_energy_at(double c1, double c2, double c3) const {
+  const double c[3] = {c1, c2, c3};
+  const double l[3] = {std::log(c1), std::log(c2), std::log(c3)};
+  const double mean = (l[0] + l[1] + l[2]) / 3.0;
+  Jet3 W;
+  Eigen::Vector3d g_log = Eigen::Vector3d::Zero();  // ∂W/∂ℓ
+  Eigen::Matrix3d h_log = Eigen::Matrix3d::Zero();  // ∂²W/∂ℓ∂ℓ
+  for (std::size_t i = 0; i < mu_.size(); ++i) {
+    const double beta = 0.5 * alpha_[i], k = 2.0 * mu_[i] / (alpha_[i] * alpha_[i]);
+    const double e[3] = {std::exp(beta * (l[0] - mean)), std::exp(beta * (l[1] - mean)), std::exp(beta * (l[2] - mean))};
+    const double S = e[0] + e[1] + e[2];
+    W.v += k * (S - 3.0);
+    for (int b = 0; b < 3; ++b) {
+      g_log[b] += k * beta * (e[b] - S / 3.0);
+      for (int d = 0; d < 3; ++d)
+        h_log(b, d) += k * beta * beta * ((b == d ? e[b] : 0.0) - (e[b] + e[d]) / 3.0 + S / 9.0);
+    }
+  }
+  for (int b = 0; b < 3; ++b) {
+    W.g[b] = g_log[b] / c[b];
+    for (int d = 0; d < 3; ++d) W.h(b, d) = h_log(b, d) / (c[b] * c[d]) - (b == d ? g_log[b] / (c[b] * c[b]) : 0.0);
+  }
+  return W;
+}
+
 nlohmann::json Ogden::coefficients_json() const { return {{"mu_MPa", mu_}, {"alpha", alpha_}}; }
 
 }  // namespace softarm::fem

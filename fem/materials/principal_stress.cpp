@@ -71,7 +71,7 @@ std::optional<PrincipalStress> evaluate_principal(const HyperelasticLaw& law, co
   Mat3 Q;  // column a = n_a
   if (!symmetric_eigen(C, c, Q) || !(c.minCoeff() > 0.0)) return std::nullopt;
 
-  const Jet3 W = law.principal_energy(Jet3::variable(c[0], 0), Jet3::variable(c[1], 1), Jet3::variable(c[2], 2));
+  const Jet3 W = law.principal_energy_at(c[0], c[1], c[2]);
   const Vec3& f = W.g;
   const Mat3& fh = W.h;
   if (!std::isfinite(W.v) || !f.allFinite() || (with_tangent && !fh.allFinite())) return std::nullopt;

@@ -28,6 +28,17 @@ Jet3 SaintVenantKirchhoff::principal_energy(const Jet3& c1, const Jet3& c2, cons
   return (0.5 * lambda_) * trace * trace + mu_ * (E1 * E1 + E2 * E2 + E3 * E3);
 }
 
+// ∂W/∂c_a = ½ (λ tr E + 2μ E_a),  ∂²W/∂c_a∂c_b = ¼ (λ + 2μ δ_ab).
+Jet3 SaintVenantKirchhoff::principal_energy_at(double c1, double c2, double c3) const {
+  const Eigen::Vector3d E(0.5 * (c1 - 1.0), 0.5 * (c2 - 1.0), 0.5 * (c3 - 1.0));
+  const double trace = E.sum();
+  Jet3 W;
+  W.v = 0.5 * lambda_ * trace * trace + mu_ * E.squaredNorm();
+  W.g = 0.5 * (lambda_ * trace * Eigen::Vector3d::Ones() + 2.0 * mu_ * E);
+  W.h = Eigen::Matrix3d::Constant(0.25 * lambda_) + Eigen::Matrix3d::Identity() * (0.5 * mu_);
+  return W;
+}
+
 double SaintVenantKirchhoff::initial_bulk_modulus() const { return E_ / (3.0 * (1.0 - 2.0 * nu_)); }
 
 nlohmann::json SaintVenantKirchhoff::to_json() const {

@@ -17,7 +17,7 @@ constexpr double kGaussW[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066
 double stress_density(const HyperelasticLaw& law, double R, double Ri, double l) {
   const double r2 = Ri * Ri - (Ri * Ri - R * R) / l, dr2 = (Ri * Ri - R * R) / (l * l);
   const double c1 = l * l, c2 = r2 / (R * R), c3 = R * R / (l * l * r2);
-  const Jet3 w = law.principal_energy(Jet3::variable(c1, 0), Jet3::variable(c2, 1), Jet3::variable(c3, 2));
+  const Jet3 w = law.principal_energy_at(c1, c2, c3);
   const double dc1 = 2 * l, dc2 = dr2 / (R * R), dc3 = -R * R * (2 * l * r2 + l * l * dr2) / (l * l * l * l * r2 * r2);
   return w.g[0] * dc1 + w.g[1] * dc2 + w.g[2] * dc3;
 }
