@@ -1,0 +1,16 @@
+#pragma once
+// Summaries the benchmarks print: this machine is shared and noisy, so runs are repeated and the
+// median is quoted.
+#include <algorithm>
+#include <vector>
+
+namespace softarm::bench {
+
+/// The middle value (the mean of the two middle ones for an even count); 0 for none.
+inline double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+}  // namespace softarm::bench
