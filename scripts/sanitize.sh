@@ -4,6 +4,8 @@
 #
 #   scripts/sanitize.sh                    # the whole suite
 #   scripts/sanitize.sh -L cli             # ctest options pass through: here the CLI tests only
+#   scripts/sanitize.sh --log F -L long    # one test at a time, each result appended to F as it
+#                                          # ends; run again, it skips the tests F has as passed
 #
 # Any sanitizer report fails its test: ASan aborts on the first error (and on a leak at exit), UBSan
 # halts on the first undefined behaviour, each with a stack trace in the test's output. Leaks inside
@@ -11,6 +13,11 @@
 # process and never freed by design) are suppressed by library name; a leak in softarm's code is not.
 # Expect the suite to take 3-6 times as long as in build/ (tests/support/time_limit.hpp).
 set -euo pipefail
+log=
+if [[ "${1:-}" == "--log" ]]; then
+  log=$(realpath -m "${2:?--log needs a file}")
+  shift 2
+fi
 cd "$(dirname "$0")/.."
 
 jobs=$(nproc 2>/dev/null || echo 2)
@@ -27,4 +34,23 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # The same work takes 3-6x longer here: the limits the tests put on the commands they start (mpirun)
 # and ctest's default per-test limit (1,500 s) are scaled to match.
 export SOFTARM_TEST_TIME_SCALE=${SOFTARM_TEST_TIME_SCALE:-6}
-ctest --test-dir build-sanitize --output-on-failure -j"$jobs" --timeout 9000 "$@"
+if [[ -z $log ]]; then
+  exec ctest --test-dir build-sanitize --output-on-failure -j"$jobs" --timeout 9000 "$@"
+fi
+# The whole suite here takes hours: with --log each test's result is kept as it ends (passed/failed,
+# name, seconds; the last failure's output in F.last-failure), and a rerun picks up where it stopped.
+touch "$log"
+status=0
+while IFS=$'\t' read -r index name; do
+  grep -qxF "passed"$'\t'"$name" <(cut -f1,2 "$log") && continue
+  start=$SECONDS
+  if ctest --test-dir build-sanitize --output-on-failure -I "$index,$index" --timeout 9000 >"$log.out" 2>&1; then
+    result=passed
+  else
+    result=failed status=1
+    cp "$log.out" "$log.last-failure"
+  fi
+  printf '%s\t%s\t%d s\n' "$result" "$name" $((SECONDS - start)) >>"$log"
+done < <(ctest --test-dir build-sanitize -N "$@" | sed -n 's/^ *Test *#\([0-9]*\): \(.*\)$/\1\t\2/p')
+rm -f "$log.out"
+exit $status
