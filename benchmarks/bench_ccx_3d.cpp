@@ -61,6 +61,7 @@
 #include <vector>
 
 #include "benchmarks/bench_options.hpp"
+#include "benchmarks/bench_stats.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/core/parallel.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
@@ -236,10 +237,6 @@ Answer ccx_run(const Problem& p, int increments, int threads, bool tight) {
   return a;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
 
 }  // namespace
 
@@ -335,7 +332,7 @@ int main(int argc, char** argv) try {
         for (const auto& v : variants) {
           std::vector<double> t;
           for (const auto& a : v.runs) t.push_back(a.seconds);
-          medians.push_back(median(t));
+          medians.push_back(softarm::bench::median(t));
         }
         for (std::size_t k = 0; k < variants.size(); ++k) {
           const Answer& a = variants[k].runs.back();

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "benchmarks/bench_options.hpp"
+#include "benchmarks/bench_stats.hpp"
 #include "fem/assembly/energy_problem.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/core/parallel.hpp"
@@ -44,10 +45,6 @@ using namespace softarm::fem;
 using Options = LinearSolver::Options;
 
 namespace {
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
-}
 double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
@@ -126,10 +123,10 @@ void run_config(const Config& c, const SparseMatrix& K, int repeat) {
     solve.push_back(now() - t0);
     residual = (K * x - b).norm() / b.norm();
   }
-  const double tf = median(factor);
+  const double tf = bench::median(factor);
   std::printf("  %-17s %-5s %8.2f %8.3f %8.3f %7.3f %7.3f %7.2f %7.3f %9.0f %9.0f  %.1e\n", c.name.c_str(),
               solver.supernodal ? "super" : "simpl", solver.factor_nonzeros / 1e6, solver.factor_flops / 1e9,
-              solver.analyse_seconds, tf, median(factor_cpu), solver.factor_flops / tf / 1e9, median(solve),
+              solver.analyse_seconds, tf, bench::median(factor_cpu), solver.factor_flops / tf / 1e9, bench::median(solve),
               solver.cholmod_peak_bytes / 1048576.0, peak_rss_MiB(), residual);
   std::fflush(stdout);
 }
@@ -203,7 +200,7 @@ int main(int argc, char** argv) try {
         problem.evaluate(x, true, false);
         g.push_back(now() - t0);
       }
-      std::printf("  assembly (median): gradient + Hessian %.3f s, gradient only %.3f s\n", median(gh), median(g));
+      std::printf("  assembly (median): gradient + Hessian %.3f s, gradient only %.3f s\n", bench::median(gh), bench::median(g));
     }
     std::printf("  %-17s %-5s %8s %8s %8s %7s %7s %7s %7s %9s %9s  %s\n", "config", "L", "nnzL[M]", "GFlop",
                 "analyse", "factor", "cpu", "GFlop/s", "solve", "chol[MiB]", "RSS[MiB]", "residual");

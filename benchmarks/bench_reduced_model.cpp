@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "benchmarks/bench_options.hpp"
+#include "benchmarks/bench_stats.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/reduced_scenes.hpp"
@@ -33,10 +34,6 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -67,7 +64,7 @@ int main(int argc, char** argv) try {
   std::printf("thesis RRA at 206.8 kPa: FEM (axisymmetric Q2/P1 level 1, %d dofs) %.2f mm in %.3f s; rod %.2f mm "
               "(%+.1f %%) in %.4f s (median of %d)\n",
               cal.dofs, cal.fem_extension_mm.back(), cal.fem_seconds, rod_ext,
-              100 * (rod_ext / cal.fem_extension_mm.back() - 1), median(rod_times), repeat);
+              100 * (rod_ext / cal.fem_extension_mm.back() - 1), bench::median(rod_times), repeat);
 
   // 2. Thesis 3CA: top clamped, chambers 2 and 3, gravity against the bend.
   fem::ArmRodSpec spec;
@@ -93,7 +90,7 @@ int main(int argc, char** argv) try {
   double p90 = -1;
   for (std::size_t i = 1; i < p.size(); ++i)
     if (p90 < 0 && angle[i] >= 90) p90 = p[i - 1] + (90 - angle[i - 1]) * (p[i] - p[i - 1]) / (angle[i] - angle[i - 1]);
-  std::printf("thesis 3CA by the rod: %.3f s (median of %d), mass %.1f g, 90 deg at %.1f kPa\n", median(times), repeat,
+  std::printf("thesis 3CA by the rod: %.3f s (median of %d), mass %.1f g, 90 deg at %.1f kPa\n", bench::median(times), repeat,
               rod.mass_kg() * 1e3, p90);
   std::printf("  pressure_kPa  rod_deg%s\n", with_3d ? "  fem3d_deg" : "");
   std::vector<double> fem_angle(p.size(), std::nan(""));
@@ -118,7 +115,7 @@ int main(int argc, char** argv) try {
   }
   if (with_3d)
     std::printf("3D FEM (%d dofs): %.1f s, 90 deg at %.1f kPa; rod/3D cost ratio 1/%.0f, 90-deg pressure %+.1f %%\n",
-                fem_dofs, fem_seconds, fem_p90, fem_seconds / median(times), 100 * (p90 / fem_p90 - 1));
+                fem_dofs, fem_seconds, fem_p90, fem_seconds / bench::median(times), 100 * (p90 / fem_p90 - 1));
 
   // 3. The thesis arm: mass and payload capacity.
   objectives::ArmCandidate arm;
@@ -141,7 +138,7 @@ int main(int argc, char** argv) try {
   }
   std::printf("thesis arm: mass %.3f kg, payload capacity %.3f kg at %.1f kPa (%s), %d rod solves, %.3f s (median of %d)\n",
               whole.mass_kg(), payload.capacity_kg, payload.lift_pressure_kPa, payload.limited_by.c_str(),
-              payload.rod_solves, median(payload_times), repeat);
+              payload.rod_solves, bench::median(payload_times), repeat);
 
   // 4. The thesis SPL pose by the spatial rod: discretisation convergence of the tip.
   const fem::SceneConfig pose = fem::load_scene_config("configs/spl_thesis_pose.json");
@@ -155,7 +152,7 @@ int main(int argc, char** argv) try {
       results.push_back(fem::run_reduced_spl(pose.spl, run.nodes, run.cells));
       t.push_back(results.back().seconds);
     }
-    seconds.push_back(median(t));
+    seconds.push_back(bench::median(t));
   }
   const Eigen::Vector3d finest = results.back().joints.back().pose.position_mm;
   const double reach = (finest - results.back().joints.front().pose.position_mm).norm();

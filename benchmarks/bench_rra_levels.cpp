@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "benchmarks/bench_options.hpp"
+#include "benchmarks/bench_stats.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/core/parallel.hpp"
@@ -23,10 +24,6 @@
 using namespace softarm;
 
 namespace {
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 double peak_memory_MiB() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
@@ -51,7 +48,7 @@ Row run_level(fem::RraSceneSpec spec, int level, int repeat) {
     total.push_back(r.timings.total_s);
   }
   return {level, r.mesh.num_elements(), r.dofs, r.path.path.stats.steps, r.path.path.stats.newton_iterations,
-          median(assembly), median(factorize), median(solve), median(total),
+          bench::median(assembly), bench::median(factorize), bench::median(solve), bench::median(total),
           r.curve.empty() ? 0.0 : r.curve.back().extension_mm, r.path.reached_pressure_kPa,
           fem::to_string(r.path.outcome)};
 }
