@@ -297,11 +297,13 @@ int main(int argc, char** argv) try {
               return 2;
             }
             const std::string tag = e == "20r" ? " H20R" : h20 ? " H20" : " H27";
+            char loose_text[32];  // "%g": 1e-06 stays readable where a fixed width would print 0.0000
+            std::snprintf(loose_text, sizeof loose_text, "%g", loose);
             if (v == "strict") variants.push_back({"softarm tol 1e-8" + tag, v, h20, rule, {}});
-            else if (v == "loose") variants.push_back({"softarm tol " + std::to_string(loose).substr(0, 6) + tag, v, h20, rule, {}});
+            else if (v == "loose") variants.push_back({"softarm tol " + std::string(loose_text) + tag, v, h20, rule, {}});
             else if (v == "strict-refactor") variants.push_back({"refactor tol 1e-8" + tag, v, h20, rule, {}});
             else if (v == "loose-refactor")
-              variants.push_back({"refactor tol " + std::to_string(loose).substr(0, 6) + tag, v, h20, rule, {}});
+              variants.push_back({"refactor tol " + std::string(loose_text) + tag, v, h20, rule, {}});
             else if (v == "ccx" && first) variants.push_back({"ccx default", v, false, ElementIntegration::full, {}});
             else if (v == "ccx-tight" && first) variants.push_back({"ccx R_n 1e-6", v, false, ElementIntegration::full, {}});
             else if (v != "ccx" && v != "ccx-tight") {
