@@ -14,6 +14,7 @@
 #include <random>
 #include <sstream>
 
+#include "fem/core/angles.hpp"
 #include "engine/design/design_config.hpp"
 #include "engine/design/design_measures.hpp"
 #include "engine/design/design_problem.hpp"
@@ -50,7 +51,7 @@ double segment_bending(const engine::DesignConfig& config, const std::string& va
   load.gravity_m_s2 = {-9.80665, 0};
   const fem::RodState st = rod.follow(load, config.model.pressure_steps);
   REQUIRE(st.converged);
-  return rod.tip_rotation(st, load) * 180 / 3.14159265358979323846;
+  return rod.tip_rotation(st, load) * softarm::fem::kDeg;
 }
 }  // namespace
 
@@ -255,14 +256,14 @@ TEST_CASE("the payload capacity is a lift to horizontal, and the thesis arm's is
   load.tip_mass_kg = r.capacity_kg;
   const fem::RodState st = arm.follow(load, 24);
   REQUIRE(st.converged);
-  CHECK(arm.tip_rotation(st, load) * 180 / 3.14159265358979323846 == Approx(90).margin(0.05));
+  CHECK(arm.tip_rotation(st, load) * softarm::fem::kDeg == Approx(90).margin(0.05));
   CHECK(std::abs(st.x.back()) > 0.25 * arm.length_mm());
   // 5 % more mass at the full working pressure no longer reaches 90 deg.
   load.tip_mass_kg = 1.05 * r.capacity_kg;
   for (int piece : {1, 3, 5}) load.chamber_pressure_kPa[piece] = {0.0, 344.7, 344.7};
   const fem::RodState heavier = arm.follow(load, 24);
   REQUIRE(heavier.converged);
-  CHECK(arm.tip_rotation(heavier, load) * 180 / 3.14159265358979323846 < 90);
+  CHECK(arm.tip_rotation(heavier, load) * softarm::fem::kDeg < 90);
 }
 
 TEST_CASE("finite differences of the payload capacity converge", "[design]") {

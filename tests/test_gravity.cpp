@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <stdexcept>
 
+#include "fem/core/angles.hpp"
 #include "fem/forms/gravity_form.hpp"
 #include "fem/forms/make_elastic_form.hpp"
 #include "fem/mesh/quadratic_mesh.hpp"
@@ -15,7 +16,6 @@ using namespace softarm;
 using namespace softarm::fem;
 
 namespace {
-constexpr double kPi = 3.141592653589793;
 constexpr double kStandardGravity = 9.80665;  // m/s²
 
 struct HangingBlock {

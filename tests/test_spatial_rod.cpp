@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "fem/core/angles.hpp"
 #include "fem/core/json_reader.hpp"
 #include "fem/reduced/arm_rod.hpp"
 #include "fem/scenes/reduced_scenes.hpp"
@@ -14,7 +15,6 @@
 using namespace softarm::fem;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 ArmRodSpec thesis_3ca_spec(int nodes) {
   ArmRodSpec spec;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "fem/core/angles.hpp"
 #include "fem/reduced/rod_section.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/tca_cell_rod.hpp"
@@ -96,8 +97,8 @@ TEST_CASE("Rigid rings make a pressurised cell stretch and bend, silicone ones b
   REQUIRE(silicone_rings.path.outcome == PathOutcome::completed);
   const TcaCellState& r = abs_rings.states.back();
   const TcaCellState& s = silicone_rings.states.back();
-  INFO("ABS rings: stretch " << r.stretch << ", " << r.curvature_per_mm * 180 / M_PI << " deg/mm; silicone: "
-                             << s.stretch << ", " << s.curvature_per_mm * 180 / M_PI << " deg/mm");
+  INFO("ABS rings: stretch " << r.stretch << ", " << r.curvature_per_mm * kDeg << " deg/mm; silicone: "
+                             << s.stretch << ", " << s.curvature_per_mm * kDeg << " deg/mm");
   CHECK(r.pressure_kPa == Approx(20));
   // Towards the unpressurised chamber, and longer: the rings hold the chambers' width, the
   // squeezed wall lengthens (docs/reduced-model.md, What the rings do).
@@ -195,7 +196,7 @@ TEST_CASE("A ring-pitch cell bends as the inside of a long 3CA does, at the 3D m
   REQUIRE(cell.path.outcome == PathOutcome::completed);
   std::vector<double> per_pitch;
   for (const auto& s : cell.states)
-    if (s.is_output && s.pressure_kPa > 0) per_pitch.push_back(s.curvature_per_mm * p * 180 / 3.14159265358979);
+    if (s.is_output && s.pressure_kPa > 0) per_pitch.push_back(s.curvature_per_mm * p * kDeg);
   REQUIRE(per_pitch.size() == inside[0].size());
   for (std::size_t i = 0; i < per_pitch.size(); ++i) {
     INFO("output " << i << ": cell " << per_pitch[i] << "°/pitch; 3D inside, level 1's layers " << inside[0][i]

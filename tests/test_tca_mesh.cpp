@@ -7,6 +7,7 @@
 #include <numeric>
 #include <set>
 
+#include "fem/core/angles.hpp"
 #include "fem/elements/reference_quadrature.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
 #include "fem/mesh/tca_mesher.hpp"
@@ -14,7 +15,6 @@
 using namespace softarm::fem;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 double chamber_volume(const Mesh& mesh, int chamber) {
   const LoadState load;
