@@ -39,7 +39,7 @@ class HyperelasticLaw {
 
   /// The same energy with its gradient and Hessian in (c1, c2, c3) at given eigenvalues: what every
   /// Gauss point asks for. By default principal_energy() on three variables; a law may give a closed
-  /// form that is cheaper than the jet arithmetic (Ogden: fem/materials/ogden.cpp).
+  /// form that is cheaper than the jet arithmetic (Ogden, Saint Venant-Kirchhoff).
   virtual Jet3 principal_energy_at(double c1, double c2, double c3) const {
     return principal_energy(Jet3::variable(c1, 0), Jet3::variable(c2, 1), Jet3::variable(c3, 2));
   }

@@ -24,8 +24,8 @@ class Ogden final : public IsochoricVolumetricLaw {
   double initial_shear_modulus() const override;
   const std::vector<double>& mu() const { return mu_; }
   const std::vector<double>& alpha() const { return alpha_; }
-  /// Eq 3's W̄ with its derivatives in closed form (the jets' sum of ten powers is a third of a
-  /// Gauss point's cost); equal to the jets' isochoric_energy() to round-off (test [material]).
+  /// Eq 3's W̄ with its derivatives in closed form (through the jets, its ten powers and their
+  /// products were a third of a Gauss point's cost); equal to the jets' to round-off (test [materials]).
   Jet3 principal_energy_at(double c1, double c2, double c3) const override;
 
  protected:
