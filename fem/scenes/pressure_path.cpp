@@ -320,7 +320,7 @@ struct PathContext {
   LinearSolver& solver;
   LoadState& load;
   const std::function<void(double)>& set_pressures;  // every loaded chamber at level · fraction · p_max
-  const std::function<void(const PressureState&, const Vector&)>& on_state;
+  const PressureStateCallback& on_state;
 };
 
 /// An earlier run's states, handed on as they came; returns where the path goes on from the last
@@ -329,7 +329,7 @@ PathStart resume_from(const PathContext& c, const std::vector<PathLogRecord>& re
                       PressurePathResult& out) {
   for (const PathLogRecord& r : resumed) {
     out.history.push_back(r.state);
-    if (c.on_state) c.on_state(r.state, r.x);
+    if (c.on_state) c.on_state(r.state, r.x, nullptr);
   }
   const PathLogRecord& last = resumed.back();
   x = last.x;
@@ -383,7 +383,7 @@ void record_rest_state(const PathContext& c, const Vector& x, std::optional<Path
   const PressureState s0{0.0, c.chamber.volume(x), pv_stiffness(c.problem, c.chamber, c.solver, x, c.spec.newton, nullptr),
                          c.solver.status() == LinearSolver::Status::positive_definite, 0, true};
   out.history.push_back(s0);
-  if (c.on_state) c.on_state(s0, x);
+  if (c.on_state) c.on_state(s0, x, &e0.hessian);
   if (log) log->append({0.0, c.spec.steps.initial_increment, s0, out.path.stats, x});
 }
 
@@ -404,7 +404,7 @@ void follow_pressure(const PathContext& c, Vector& x, const PathStart& start, st
                     pv_stiffness(c.problem, c.chamber, c.solver, xs, c.spec.newton, &report.last.hessian),
                     report.tangent_positive_definite, report.iterations, is_output};
     out.history.push_back(s);
-    if (c.on_state) c.on_state(s, xs);
+    if (c.on_state) c.on_state(s, xs, &report.last.hessian);
     converged = {level, &xs};
   };
   if (log)
@@ -500,14 +500,14 @@ bool settled_by_volume_control(const PathContext& c, Vector& x, const Vector& x_
                   " % of its initial value) and chamber-volume control carried the path on to the requested "
                   "pressure without a maximum (" + vc.message + ")";
   out.history.push_back(s);
-  if (c.on_state) c.on_state(s, x);
+  if (c.on_state) c.on_state(s, x, &landing.last.hessian);
   return true;
 }
 }  // namespace
 
 PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::vector<const ChamberPressureForm*>& chambers,
                                      LoadState& load, Vector& x, const PressurePathSpec& spec,
-                                     const std::function<void(const PressureState&, const Vector&)>& on_state) {
+                                     const PressureStateCallback& on_state) {
   PressurePathResult out;
   LinearSolver solver;
   LoadedVolume chamber{chambers, spec.pressure_fractions};

@@ -167,6 +167,12 @@ struct PressurePathSpec {
   PathCheckpoint checkpoint;
 };
 
+/// A converged state as the path hands it on: the state, its positions and the tangent at those
+/// positions under the same loads where the path has just assembled it (Newton's last evaluation, or
+/// the rest state's), else nullptr (a state resumed from the log): a caller that needs the
+/// tangent there need not assemble it again.
+using PressureStateCallback = std::function<void(const PressureState&, const Vector&, const SparseMatrix* tangent)>;
+
 /// Ramps the pressures of `chambers` (entries of load.chamber_pressure_MPa) from 0
 /// together; calls `on_state` for every converged step. With `spec.checkpoint`, every
 /// converged step is logged as it comes, and the states of an earlier run's log are handed
@@ -174,6 +180,6 @@ struct PressurePathSpec {
 PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::vector<const ChamberPressureForm*>& chambers,
                                      LoadState& load,
                                      Vector& x, const PressurePathSpec& spec,
-                                     const std::function<void(const PressureState&, const Vector&)>& on_state);
+                                     const PressureStateCallback& on_state);
 
 }  // namespace softarm::fem

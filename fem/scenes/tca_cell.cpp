@@ -142,12 +142,13 @@ class CellFaceReader {
   /// (the axial force), and on (b, c) along d (a moment about the axis normal to d: turning the face
   /// towards d lowers the plane along d). dφ = uᵀK⁻¹u·share·dM, κ = φ/L; dλ = uᵀK⁻¹u·share·dN/L.
   /// In a half model d lies in the mirror plane and c is fixed. Left at zero where the tangent is
-  /// not positive definite.
-  void add_compliance(TcaCellState& c, const Vector& xs, double& seconds) {
+  /// not positive definite. `tangent`: K at xs where the path has it (assembled here where not).
+  void add_compliance(TcaCellState& c, const Vector& xs, const SparseMatrix* tangent, double& seconds) {
     const AddElapsedSeconds timer(seconds);  // every return below counts
     const EnergyProblem& problem = *cell_.problem;
-    const Evaluation e = problem.evaluate(xs, false, true);
-    if (solver_.factorize(e.hessian) != LinearSolver::Status::positive_definite) return;
+    Evaluation assembled;
+    if (!tangent) tangent = &(assembled = problem.evaluate(xs, false, true)).hessian;
+    if (solver_.factorize(*tangent) != LinearSolver::Status::positive_definite) return;
     const auto unit = [&](int component) {
       Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.num_dofs());
       u[3 * cell_.pilot + component] = 1;
@@ -197,7 +198,7 @@ void run_end_loads_only(const TcaSceneSpec& spec, CellProblem& cell, CellFaceRea
   out.states.push_back(face.state(0.0, 0.0, x));
   out.states.back().newton_iterations = out.path.path.stats.newton_iterations;
   out.states.back().is_output = true;
-  if (out.path.path.completed) face.add_compliance(out.states.back(), x, out.compliance_s);
+  if (out.path.path.completed) face.add_compliance(out.states.back(), x, nullptr, out.compliance_s);
 }
 }  // namespace
 
@@ -222,11 +223,11 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
   } else {
     const PressurePathSpec path = tca_pressure_path(spec, cell.chambers, cell.end_loaded, 0);
     out.path = run_pressure_path(*cell.problem, cell.chambers.loaded, cell.load, x, path,
-                                 [&](const PressureState& s, const Vector& xs) {
+                                 [&](const PressureState& s, const Vector& xs, const SparseMatrix* tangent) {
                                    out.states.push_back(face.state(s.pressure_kPa, s.chamber_volume_mm3, xs));
                                    out.states.back().newton_iterations = s.newton_iterations;
                                    out.states.back().is_output = s.is_output;
-                                   if (s.is_output) face.add_compliance(out.states.back(), xs, out.compliance_s);
+                                   if (s.is_output) face.add_compliance(out.states.back(), xs, tangent, out.compliance_s);
                                  });
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -278,9 +279,10 @@ std::vector<CellTorsionState> cell_torsion_along_ramp(const TcaSceneSpec& spec, 
   // GJ = L / (dφ/dT) from the tangent at a state: φ's response to a unit torque (NaN where the tangent
   // is not positive definite).
   LinearSolver solver;  // one symbolic analysis for every state
-  const auto stiffness_at = [&](const Vector& x) {
-    if (solver.factorize(problem.evaluate(x, false, true).hessian) != LinearSolver::Status::positive_definite)
-      return std::nan("");
+  const auto stiffness_at = [&](const Vector& x, const SparseMatrix* tangent) {
+    Evaluation assembled;
+    if (!tangent) tangent = &(assembled = problem.evaluate(x, false, true)).hessian;
+    if (solver.factorize(*tangent) != LinearSolver::Status::positive_definite) return std::nan("");
     Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.num_dofs());
     u[3 * twist_pilot + 2] = 1;
     problem.zero_prescribed(u);
@@ -289,12 +291,12 @@ std::vector<CellTorsionState> cell_torsion_along_ramp(const TcaSceneSpec& spec, 
   std::vector<CellTorsionState> out;
   Vector x = X;
   if (chambers.loaded.empty()) {
-    out.push_back({0.0, stiffness_at(x)});
+    out.push_back({0.0, stiffness_at(x, nullptr)});
     return out;
   }
   run_pressure_path(problem, chambers.loaded, load, x, tca_pressure_path(full, chambers, false, 0),
-                    [&](const PressureState& p, const Vector& xs) {
-                      if (p.is_output) out.push_back({p.pressure_kPa, stiffness_at(xs)});
+                    [&](const PressureState& p, const Vector& xs, const SparseMatrix* tangent) {
+                      if (p.is_output) out.push_back({p.pressure_kPa, stiffness_at(xs, tangent)});
                     });
   return out;
 }
