@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <limits>
 
@@ -19,11 +20,28 @@ namespace {
 void match_blas_threads() {
   using SetThreads = void (*)(int);
   static const auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  static int applied = 0;
-  if (set && applied != thread_count()) {
-    applied = thread_count();
-    set(applied);
-  }
+  static std::atomic<int> applied{0};  // the cells' tasks factorise side by side
+  if (set && applied.exchange(thread_count()) != thread_count()) set(thread_count());
+}
+
+/// CHOLMOD's supernodal factorisation opens an OpenMP team of a size fixed when it was built
+/// (`num_threads(CHOLMOD_OMP_NUM_THREADS)`) around the memsets that zero each supernode and clear
+/// its map: a fork and join per supernode, with more threads than this machine has cores, and
+/// those threads spin between teams against the cells' tasks. A `num_threads` clause overrides
+/// omp_set_num_threads, but with dynamic teams on, libgomp bounds a team by min(cores,
+/// nthreads-var) less the load average, so nthreads-var = 1 makes every team this thread opens a
+/// team of one: the loops run in the calling thread, with the same results (copies and zeros).
+/// OpenMP's settings belong to each thread, hence once per thread; looked up at run time, as the
+/// BLAS's are. Ring 15 of the thesis 3CA on one core (bench_tca_cell): docs/performance.md.
+void serial_openmp_in_this_thread() {
+  using SetInt = void (*)(int);
+  static const auto set_dynamic = reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_dynamic"));
+  static const auto set_threads = reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_num_threads"));
+  thread_local bool applied = false;
+  if (applied || !set_dynamic || !set_threads) return;
+  applied = true;
+  set_threads(1);
+  set_dynamic(1);
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -112,6 +130,7 @@ bool LinearSolver::cholesky_with_shift(const SparseMatrix& K, double shift) {
 
 bool LinearSolver::plain_cholesky(const SparseMatrix& K) {
   match_blas_threads();
+  serial_openmp_in_this_thread();
   ++factorizations;
   shifted_ = false;
   last_shift = 0.0;
