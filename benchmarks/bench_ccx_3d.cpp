@@ -78,7 +78,6 @@ namespace bench = softarm::bench;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 Material silicone() {  // Dragon Skin 30's initial moduli: μ0 = 0.1153 MPa, D1 = 0.7029/MPa
   Material m;
@@ -171,7 +170,7 @@ Answer softarm_run(const Problem& p, int increments, const NewtonSettings& newto
   steps.initial_increment = steps.max_increment = 1.0 / increments;
   const PathCallbacks cb{[&](double level) { load.chamber_pressure_MPa[0] = level * p.pressure_kPa * 1e-3; }, {}};
   const PathResult r = follow_load_path(problem, x, solver, {1.0}, cb, newton, steps);
-  a.seconds = since(t0);
+  a.seconds = bench::seconds_since(t0);
   a.dofs = problem.num_dofs();
   a.iterations = r.stats.newton_iterations;
   a.increments = r.stats.steps;
@@ -215,7 +214,7 @@ Answer ccx_run(const Problem& p, int increments, int threads, bool tight) {
                           " CCX_NPROC_STIFFNESS=" + t + " CCX_NPROC_RESULTS=" + t + " ccx -i job > ccx.log 2>&1";
   const auto t0 = Clock::now();
   const int status = std::system(cmd.c_str());
-  a.seconds = since(t0);
+  a.seconds = bench::seconds_since(t0);
   const auto stats = read_ccx_statistics((dir / "job.sta").string());
   a.iterations = stats.iterations;
   a.increments = stats.increments;

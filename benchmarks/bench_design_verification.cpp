@@ -18,6 +18,7 @@
 #include <string>
 
 #include "benchmarks/bench_options.hpp"
+#include "benchmarks/bench_stats.hpp"
 #include "engine/design/design_config.hpp"
 #include "engine/design/design_problem.hpp"
 #include "fem/core/input_error.hpp"
@@ -80,7 +81,7 @@ int main(int argc, char** argv) try {
   const objectives::ArmCandidate candidate = engine::make_candidate(config, x);
   const auto t0 = std::chrono::steady_clock::now();
   const objectives::ArmMeasures search = objectives::evaluate_arm(candidate, config.model);
-  const double search_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double search_s = bench::seconds_since(t0);
   const objectives::CellRodEvaluation cells = objectives::evaluate_arm_on_cells(candidate, config.check, cell_levels);
   if (!cells.ok()) {
     std::cout << "no cells: " << cells.failure << "\n";

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "benchmarks/bench_options.hpp"
+#include "benchmarks/bench_stats.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/core/json_reader.hpp"
 #include "fem/core/parallel.hpp"
@@ -98,7 +99,7 @@ Outcome run(const Case& c, int level) {
     o.kind = "refused";
     o.words = e.what();
   }
-  o.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  o.seconds = bench::seconds_since(t0);
   return o;
 }
 

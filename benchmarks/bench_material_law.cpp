@@ -49,10 +49,6 @@ class ThroughJets final : public fem::HyperelasticLaw {
   std::shared_ptr<const fem::HyperelasticLaw> law_;
 };
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 /// Deformation gradients over the range the scenes meet: stretch, shear and a rotation each.
 std::vector<fem::Mat3> deformations(int count) {
   std::vector<fem::Mat3> F;
@@ -73,7 +69,7 @@ double ns_per_point(const fem::HyperelasticLaw& law, const std::vector<fem::Mat3
   const auto start = std::chrono::steady_clock::now();
   for (const auto& f : F)
     if (const auto s = fem::evaluate_principal(law, f, true)) sink += s->A(0, 0) + s->W;
-  return 1e9 * seconds_since(start) / static_cast<double>(F.size());
+  return 1e9 * bench::seconds_since(start) / static_cast<double>(F.size());
 }
 
 void time_points(int points, int repeat) {
@@ -105,7 +101,7 @@ void time_scene(const fem::RraSceneSpec& closed, int repeat) {
     for (int way = 0; way < 2; ++way) {
       const auto start = std::chrono::steady_clock::now();
       last[way] = fem::run_rra_scene(way == 0 ? closed : jets);
-      times[way].push_back(seconds_since(start));
+      times[way].push_back(bench::seconds_since(start));
     }
   std::printf("the rra scene's whole curve, %d thread(s), median of %d, interleaved\n", fem::thread_count(), repeat);
   std::printf("%-12s %8s %7s %7s %18s\n", "derivatives", "time_s", "steps", "newton", "last_extension_mm");

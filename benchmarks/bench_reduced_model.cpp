@@ -33,7 +33,6 @@ using namespace softarm;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -59,7 +58,7 @@ int main(int argc, char** argv) try {
   for (int k = 0; k < repeat; ++k) {
     const auto t = Clock::now();
     rod_ext = fem::rod_rra_extension_mm(rra.design, law, 206.8, 1.0);
-    rod_times.push_back(since(t));
+    rod_times.push_back(bench::seconds_since(t));
   }
   std::printf("thesis RRA at 206.8 kPa: FEM (axisymmetric Q2/P1 level 1, %d dofs) %.2f mm in %.3f s; rod %.2f mm "
               "(%+.1f %%) in %.4f s (median of %d)\n",
@@ -85,7 +84,7 @@ int main(int argc, char** argv) try {
       p.push_back(f * 344.7);
       angle.push_back(rod.tip_rotation(st, load) * softarm::fem::kDeg);
     });
-    times.push_back(since(t));
+    times.push_back(bench::seconds_since(t));
   }
   double p90 = -1;
   for (std::size_t i = 1; i < p.size(); ++i)
@@ -101,7 +100,7 @@ int main(int argc, char** argv) try {
     config.tca.output_pressures_kPa = p;
     const auto t = Clock::now();
     const fem::TcaResult r = fem::run_tca_scene(config.tca);
-    fem_seconds = since(t);
+    fem_seconds = bench::seconds_since(t);
     fem_dofs = r.dofs;
     for (const auto& s : r.curve)
       for (std::size_t i = 0; i < p.size(); ++i)
@@ -134,7 +133,7 @@ int main(int argc, char** argv) try {
   for (int k = 0; k < repeat; ++k) {
     const auto t = Clock::now();
     payload = objectives::payload_capacity(whole, ps);
-    payload_times.push_back(since(t));
+    payload_times.push_back(bench::seconds_since(t));
   }
   std::printf("thesis arm: mass %.3f kg, payload capacity %.3f kg at %.1f kPa (%s), %d rod solves, %.3f s (median of %d)\n",
               whole.mass_kg(), payload.capacity_kg, payload.lift_pressure_kPa, payload.limited_by.c_str(),
@@ -175,7 +174,7 @@ int main(int argc, char** argv) try {
   cut.tca.output_pressures_kPa = {50, 100, 150, 200};
   const auto t3 = Clock::now();
   const fem::TcaResult fem3d = fem::run_tca_scene(cut.tca);
-  const double fem3d_s = since(t3);
+  const double fem3d_s = bench::seconds_since(t3);
   fem::ArmRodSpec one;
   one.pieces = {fem::RodPiece{}};
   one.pieces[0].design = cut.tca.design;
@@ -193,7 +192,7 @@ int main(int argc, char** argv) try {
     rod_states.push_back(st);
     rod_pressure.push_back(200 * f);
   });
-  const double rod_s = since(t4);
+  const double rod_s = bench::seconds_since(t4);
   std::printf("32 mm 3CA, chambers 1, 2 at 200, 100 kPa: 3D %s (%d dofs, %s) %.1f s; spatial rod %.3f s\n",
               fem3d.element_name.c_str(), fem3d.dofs, fem3d.model.name.c_str(), fem3d_s, rod_s);
   std::printf("  chamber1_kPa  fem_deg  rod_deg  fem_azimuth_deg  rod_azimuth_deg  fem_tip_u_mm  rod_tip_u_mm\n");

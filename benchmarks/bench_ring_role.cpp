@@ -16,6 +16,7 @@
 #include <string>
 
 #include "benchmarks/bench_options.hpp"
+#include "benchmarks/bench_stats.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/materials/material.hpp"
 #include "fem/reduced/arm_rod.hpp"
@@ -56,7 +57,7 @@ double solid(const Rings& r, const Load& l, double& seconds) {
   spec.output_pressures_kPa = {p};
   const auto t0 = std::chrono::steady_clock::now();
   const TcaResult res = run_tca_scene(spec);
-  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  seconds = bench::seconds_since(t0);
   const TcaState& s = res.states.back();
   return l.stretch ? -s.tip_displacement_mm.z() : s.bending_angle_deg;
 }

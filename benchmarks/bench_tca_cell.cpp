@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "benchmarks/bench_options.hpp"
+#include "benchmarks/bench_stats.hpp"
 #include "benchmarks/bench_scene.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/core/parallel.hpp"
@@ -77,7 +78,7 @@ int main(int argc, char** argv) try {
       const auto t0 = std::chrono::steady_clock::now();
       const auto gj = fem::cell_torsion_along_ramp(spec, ring);
       std::printf("ring %d: GJ along the ramp (%.1f s)\n%12s %14s %10s\n", ring,
-                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), "pressure_kPa",
+                  bench::seconds_since(t0), "pressure_kPa",
                   "GJ_Nmm2", "vs_rest");
       for (const auto& g : gj)
         std::printf("%12.2f %14.1f %10.3f\n", g.pressure_kPa, g.stiffness_Nmm2, g.stiffness_Nmm2 / gj.front().stiffness_Nmm2);
@@ -159,7 +160,7 @@ int main(int argc, char** argv) try {
   std::vector<double> pressures = {0.0};
   pressures.insert(pressures.end(), spec.output_pressures_kPa.begin(), spec.output_pressures_kPa.end());
   for (double p : pressures) curve.push_back({fem::solve_cell_rod(rod, p), fem::solve_cell_rod(weightless, p)});
-  const double rod_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double rod_seconds = bench::seconds_since(t0);
   std::printf("\ncell rod from %zu cells (%.1f s of cells, %.3f s for the curve; gravity %.3f along the bend, %.3f along z m/s^2)\n",
               cells.size(), cell_seconds, rod_seconds, rod.gravity_along_bend_m_s2, rod.gravity_along_axis_m_s2);
   std::printf("%12s %12s %10s %10s %14s %12s %10s\n", "pressure_kPa", "bending_deg", "tip_bend", "tip_z",

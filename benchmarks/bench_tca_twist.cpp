@@ -14,6 +14,7 @@
 
 #include "benchmarks/bench_options.hpp"
 #include "benchmarks/bench_scene.hpp"
+#include "benchmarks/bench_stats.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/scenes/scene_config.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
@@ -22,11 +23,6 @@
 
 using namespace softarm;
 
-namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-}  // namespace
 
 int main(int argc, char** argv) try {
   std::string config = "configs/tca_thesis.json";
@@ -76,11 +72,11 @@ int main(int argc, char** argv) try {
     const auto t0 = std::chrono::steady_clock::now();
     solid = fem::tca_twist_compliance(spec);
     std::printf("3D, bonded at both ends (full model): %.6e rad/(N·mm), GJ_eff = L/C = %.1f N·mm² (%.1f s)\n", solid,
-                spec.design.actuator.length_mm / solid, seconds_since(t0));
+                spec.design.actuator.length_mm / solid, bench::seconds_since(t0));
   }
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<double> rod = fem::tca_rod_twist_compliances(spec, end_rings);
-  std::printf("the rod's cells and end cells at rest: %.1f s\n%-28s %14s %12s %10s\n", seconds_since(t0), "rod",
+  std::printf("the rod's cells and end cells at rest: %.1f s\n%-28s %14s %12s %10s\n", bench::seconds_since(t0), "rod",
               "C_rad_per_Nmm", "GJ_eff_Nmm2", "vs_3D_pct");
   for (std::size_t i = 0; i < rod.size(); ++i) {
     const std::string name = end_rings[i] == 0 ? "cells' GJ alone" : "ends through " + std::to_string(end_rings[i]) + " rings";
