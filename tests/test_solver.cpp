@@ -503,3 +503,53 @@ TEST_CASE("parallel_tasks runs every task once, one thread each, and hands back 
   CHECK(thread_count() == 2);
   set_thread_count(saved);
 }
+
+namespace {
+/// The 7-point Laplacian of an m×m×m grid plus the identity: SPD, with a graph that METIS orders
+/// by random matchings and bisections.
+SparseMatrix grid_laplacian_3d(int m) {
+  const auto at = [m](int i, int j, int k) { return (k * m + j) * m + i; };
+  std::vector<Eigen::Triplet<double>> t;
+  for (int k = 0; k < m; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i) {
+        const int r = at(i, j, k);
+        t.emplace_back(r, r, 7.0);
+        if (i + 1 < m) t.emplace_back(r, at(i + 1, j, k), -1.0), t.emplace_back(at(i + 1, j, k), r, -1.0);
+        if (j + 1 < m) t.emplace_back(r, at(i, j + 1, k), -1.0), t.emplace_back(at(i, j + 1, k), r, -1.0);
+        if (k + 1 < m) t.emplace_back(r, at(i, j, k + 1), -1.0), t.emplace_back(at(i, j, k + 1), r, -1.0);
+      }
+  SparseMatrix K(m * m * m, m * m * m);
+  K.setFromTriplets(t.begin(), t.end());
+  return K;
+}
+}  // namespace
+
+TEST_CASE("two solvers factorising side by side give the bits each gives alone (METIS ordering)", "[solver]") {
+  // The cells run side by side, one thread each; a design's answer must not depend on which
+  // cell's analysis came first. METIS keeps one random generator for the whole process.
+  const SparseMatrix K = grid_laplacian_3d(22);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(K.rows(), 1.0, 2.0);
+  LinearSolver::Options options;
+  options.ordering = LinearSolver::Options::Ordering::metis;
+  options.mode = LinearSolver::Options::Mode::supernodal;
+  const auto solve_alone = [&] {  // no Catch assertion inside: the tasks run it on two threads
+    LinearSolver solver(options);
+    return solver.factorize(K) == LinearSolver::Status::positive_definite ? Eigen::VectorXd(solver.solve(b))
+                                                                          : Eigen::VectorXd();
+  };
+  const int saved = thread_count();
+  set_thread_count(1);  // as each task runs: the BLAS's thread count changes its rounding too
+  const Eigen::VectorXd alone = solve_alone();
+  REQUIRE((K * alone - b).norm() <= 1e-10 * b.norm());
+  set_thread_count(2);
+  for (int round = 0; round < 4; ++round) {
+    std::vector<Eigen::VectorXd> side_by_side(2);
+    parallel_tasks(2, [&](int i) { side_by_side[i] = solve_alone(); }, {});
+    for (const auto& x : side_by_side) {
+      REQUIRE(x.size() == alone.size());
+      CHECK(std::memcmp(x.data(), alone.data(), sizeof(double) * alone.size()) == 0);
+    }
+  }
+  set_thread_count(saved);
+}

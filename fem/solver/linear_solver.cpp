@@ -3,9 +3,9 @@
 #include <dlfcn.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <limits>
+#include <mutex>
 
 #include "fem/core/parallel.hpp"
 #include "fem/solver/preconditioned_cg.hpp"
@@ -20,8 +20,15 @@ namespace {
 void match_blas_threads() {
   using SetThreads = void (*)(int);
   static const auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  static std::atomic<int> applied{0};  // the cells' tasks factorise side by side
-  if (set && applied.exchange(thread_count()) != thread_count()) set(thread_count());
+  // The cells' tasks factorise side by side: a task waits until the count it needs is set, since
+  // OpenBLAS's thread count changes how it blocks a factorisation and so its rounding.
+  static std::mutex mutex;
+  static int applied = 0;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (set && applied != thread_count()) {
+    applied = thread_count();
+    set(applied);
+  }
 }
 
 /// CHOLMOD's supernodal factorisation opens an OpenMP team of a size fixed when it was built
@@ -104,7 +111,17 @@ template <class Chol>
 bool LinearSolver::cholesky_factorize(Chol& c, const SparseMatrix& K) {
   if (!cholesky_analysed_) {
     const auto t0 = std::chrono::steady_clock::now();
-    c.analyzePattern(K);
+    {
+      // One analysis at a time in the process: CHOLMOD's default ordering calls METIS, which
+      // seeds one random generator shared by every thread at each call. Two cells analysed side
+      // by side drew from it in turn, got orderings that depended on the timing, and so factors
+      // rounded differently: the thesis 3CA's outputs differed by up to 3e-12 from run to run.
+      // Serialised, each call seeds and draws alone, and a cell run beside another gives the
+      // bits it gives alone. The lock costs an analysis (0.07 s a cell) of waiting at most.
+      static std::mutex metis;
+      const std::lock_guard<std::mutex> one_at_a_time(metis);
+      c.analyzePattern(K);
+    }
     cholesky_analysed_ = true;
     analyse_seconds += seconds_since(t0);
     factor_flops = c.cholmod().fl;
