@@ -168,9 +168,9 @@ struct PressurePathSpec {
 };
 
 /// A converged state as the path hands it on: the state, its positions and the tangent at those
-/// positions under the same loads where the path has just assembled it (Newton's last evaluation, or
-/// the rest state's), else nullptr (a state resumed from the log): a caller that needs the
-/// tangent there need not assemble it again.
+/// positions under the same loads where the path has just assembled it (Newton's last evaluation:
+/// the rest state's, a converged step's, volume control's landing), else nullptr (a state resumed
+/// from the log): a caller that needs the tangent there need not assemble it again.
 using PressureStateCallback = std::function<void(const PressureState&, const Vector&, const SparseMatrix* tangent)>;
 
 /// Ramps the pressures of `chambers` (entries of load.chamber_pressure_MPa) from 0
