@@ -182,6 +182,12 @@ PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolve
     const double target = output_levels[first_output + path.landed()];
     const double next_level = path.next_level(target);
     const bool lands = target - next_level <= kLandingTolerance;
+    if (callbacks.stop_before && callbacks.stop_before(next_level)) {
+      result.stopped = true;
+      result.next_level = next_level;
+      result.message = "stopped before the step to level " + std::to_string(next_level);
+      return result;
+    }
     callbacks.apply_load(next_level);
     if (path.try_step(next_level, lands)) continue;
     if (!path.cut_back(next_level)) return result;

@@ -46,6 +46,10 @@ struct PathResult {
   Failure failure = Failure::none;  // last failure when not completed
   std::string message;
   int failed_element = -1;  // with inverted_element: the element
+  /// The caller stopped the path before a step (PathCallbacks::stop_before): not completed, and no
+  /// failure; x is the converged state at reached_level, and next_level the level it would have tried.
+  bool stopped = false;
+  double next_level = 0.0;
   PathStatistics stats;
 };
 
@@ -57,6 +61,10 @@ struct PathCallbacks {
   /// Called after on_converged with the increment the controller will try next: with the
   /// converged states, what a resumed path needs to go on as this one would (PathStart).
   std::function<void(double next_increment, const PathStatistics& stats)> on_increment = {};
+  /// Asked before each step with the level it would try: true stops the path at the converged state
+  /// it holds (PathResult::stopped), for a caller that sees a limit point ahead and would rather
+  /// pass it another way than try steps beyond it (fem/scenes/pressure_path.cpp).
+  std::function<bool(double next_level)> stop_before = {};
 };
 
 /// Where a path starts: at rest (level 0, no history, the initial increment), or where an

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <optional>
 
 #include "fem/core/number_text.hpp"
 #include "fem/solver/preconditioned_cg.hpp"
@@ -32,9 +33,11 @@ struct AugmentedSolves {
   int budget = 0;        // CG iterations per solve: 3 × the reuse budget, about an LU's cost for both
 
   /// From the tangent K₀ and ∇V at the starting equilibrium (the first iteration of the first
-  /// volume step, so K₀ is assembled once); unusable where K₀ is not positive definite.
+  /// volume step, so K₀ is assembled once), or at a later iterate where CG failed and K₀ factorised
+  /// positive definite; unusable where K₀ is not positive definite.
   void prepare(const SparseMatrix& K0, const Vector& g) {
     prepared = true;
+    alpha = 0;
     if (factor.factorize(K0) != LinearSolver::Status::positive_definite) return;
     const double compliance = g.dot(factor.solve(g));
     if (!(compliance > 0) || !std::isfinite(compliance)) return;
@@ -130,6 +133,9 @@ bool solve_constrained(const EnergyProblem& problem, Vector& x, double& level, L
       a = solver.solve(-e.gradient);
       b = solver.solve(P * g);
       gb = pivot = g.dot(b);
+      // CG failed on a tangent still positive definite: the starting one is too far from here (a
+      // path handed over well ahead of its maximum). This one preconditions the iterations to come.
+      if (aug.wanted && positive_definite) aug.prepare(e.hessian, g);
     }
     if (!a.allFinite() || !b.allFinite() || !(std::abs(pivot) > 0) || !std::isfinite(gb)) return false;
     slope = 1 / gb;  // dλ/dV along the path: δλ = (δV − ∇V·a)/(∇V·b)
@@ -142,6 +148,25 @@ bool solve_constrained(const EnergyProblem& problem, Vector& x, double& level, L
     if (!std::isfinite(lt)) return false;
   }
   return false;
+}
+
+/// The vertex of the parabola λ(V) through the state `best` and its neighbours, where it is
+/// concave (none at either end of the states).
+struct Vertex {
+  double volume, level;
+};
+std::optional<Vertex> vertex_around(const std::vector<VolumeControlState>& states, std::size_t best) {
+  if (best == 0 || best + 1 >= states.size()) return std::nullopt;
+  const auto& s0 = states[best - 1];
+  const auto& s1 = states[best];
+  const auto& s2 = states[best + 1];
+  const double d01 = (s1.level - s0.level) / (s1.volume - s0.volume);
+  const double d12 = (s2.level - s1.level) / (s2.volume - s1.volume);
+  const double curvature = (d12 - d01) / (s2.volume - s0.volume);  // λ'' / 2
+  if (!(curvature < 0)) return std::nullopt;
+  const double slope_at_1 = d01 + curvature * (s1.volume - s0.volume);  // λ' at V1
+  const double dv = -slope_at_1 / (2 * curvature);
+  return Vertex{s1.volume + dv, s1.level + slope_at_1 * dv + curvature * dv * dv};
 }
 
 }  // namespace
@@ -158,6 +183,8 @@ VolumeControlResult follow_volume(const EnergyProblem& problem, Vector& x, doubl
   out.states.push_back({level, vp.volume(x), 0, true});
   std::size_t best = out.states.size() - 1;
   const std::size_t first = out.states.size();  // states before this one were given, not computed
+  Vector step_start_x = x, before_best_x;  // the state each step starts from; the one before the best
+  int retraces = 0;
   AugmentedSolves aug;
   aug.wanted = settings.augmented_cg;
   while (static_cast<int>(out.states.size() - first) < settings.max_steps) {
@@ -179,9 +206,22 @@ VolumeControlResult follow_volume(const EnergyProblem& problem, Vector& x, doubl
       best_level = level;
       best_x = x;
       best = out.states.size() - 1;
+      before_best_x = step_start_x;
     }
-    if (level >= 1) {
-      out.message = "the pressure rose back to the full load at V = " + fmt(out.states.back().volume) + " mm³";
+    step_start_x = x;
+    // K indefinite where dλ/dV is still positive: a mode the volume does not see has gone unstable
+    // (a bifurcation). Pressure control's path turns off the traced branch there, so a maximum
+    // further along it is not this path's (a thin neo-Hookean tube: the branch bifurcates at
+    // 30.65 kPa and folds at 30.70).
+    if (settings.stop_at_bifurcation && !state.tangent_positive_definite && state.level_slope_per_mm3 > 0) {
+      out.message = "the tangent lost positive definiteness at level " + fmt(level) +
+                    " with the pressure still rising (a bifurcation)";
+      break;
+    }
+    if (level >= settings.level_ceiling) {
+      out.message = std::string(settings.level_ceiling >= 1 ? "the pressure rose back to the full load" :
+                                "the pressure rose to level " + fmt(settings.level_ceiling)) +
+                    " at V = " + fmt(out.states.back().volume) + " mm³";
       break;
     }
     // Past the maximum: the level has fallen clearly below it, or it has fallen at a state
@@ -189,6 +229,29 @@ VolumeControlResult follow_volume(const EnergyProblem& problem, Vector& x, doubl
     // on an indefinite tangent, then no volume step converged).
     const bool fell = level < (1 - settings.drop_fraction) * best_level;
     const bool descending = level < best_level && state.level_slope_per_mm3 < 0;
+    // A maximum bracketed by steps too long to place it: the pressure fell far past it, or the
+    // parabola's vertex lies well above every traced state (steps grown on an easy climb, or a
+    // path handed over well ahead of its maximum). Such a vertex is off: a Dragon Skin 30 end cap
+    // of 0.05, handed over at 87.16 kPa and fallen to 99.50 %, gave 87.57 kPa against 87.83 by
+    // creeping pressure control; a thin neo-Hookean tube's first step from 30 kPa landed just past
+    // its top, and the vertex through 30 and 30.64 kPa was 30.70 against 30.65. The top is traced
+    // again from the state before the largest with quarter steps, at most max_retraces times (from
+    // the starting state itself where that is the largest: the state before it has no x here).
+    const auto top = (fell || descending) ? vertex_around(out.states, best) : std::nullopt;
+    const bool coarse = level < (1 - settings.retrace_fall_fraction) * best_level ||
+                        (top && top->level > (1 + settings.retrace_vertex_fraction) * best_level);
+    if ((fell || descending) && retraces < settings.max_retraces && coarse) {
+      ++retraces;
+      const std::size_t from = best >= first ? best - 1 : best;
+      step = (out.states[from + 1].volume - out.states[from].volume) / 4;
+      if (from < best) best_x = before_best_x;
+      out.states.resize(from + 1);
+      best = from;
+      best_level = level = out.states[best].level;
+      x = step_start_x = best_x;
+      vp.apply_level(level);
+      continue;
+    }
     if ((fell || descending) && best > 0) {
       out.passed_peak = true;
       out.message = "the pressure passed its maximum and fell to " + fmt(level / best_level * 100) + " % of it" +
@@ -201,21 +264,8 @@ VolumeControlResult follow_volume(const EnergyProblem& problem, Vector& x, doubl
     out.message = "no maximum within " + std::to_string(settings.max_steps) + " volume steps";
   out.peak_level = best_level;
   out.peak_volume = out.states[best].volume;
-  if (out.passed_peak && best > 0 && best + 1 < out.states.size()) {
-    // Vertex of the parabola λ(V) through the largest state and its neighbours.
-    const auto& s0 = out.states[best - 1];
-    const auto& s1 = out.states[best];
-    const auto& s2 = out.states[best + 1];
-    const double d01 = (s1.level - s0.level) / (s1.volume - s0.volume);
-    const double d12 = (s2.level - s1.level) / (s2.volume - s1.volume);
-    const double curvature = (d12 - d01) / (s2.volume - s0.volume);  // λ'' / 2
-    if (curvature < 0) {
-      const double slope_at_1 = d01 + curvature * (s1.volume - s0.volume);  // λ' at V1
-      const double dv = -slope_at_1 / (2 * curvature);
-      out.peak_volume = s1.volume + dv;
-      out.peak_level = s1.level + slope_at_1 * dv + curvature * dv * dv;
-    }
-  }
+  if (out.passed_peak)
+    if (const auto top = vertex_around(out.states, best)) out.peak_volume = top->volume, out.peak_level = top->level;
   out.states.erase(out.states.begin(), out.states.begin() + static_cast<std::ptrdiff_t>(first - 1));  // from the start
   add_costs(solver, aug.factor);
   x = best_x;

@@ -38,6 +38,17 @@ struct VolumeControlSettings {
   double drop_fraction = 2e-4;       // the maximum is passed once λ falls this far below it: 10⁴ times the
                                      // equilibrium tolerance, so a fall is a fall (a Dragon Skin 10 RRA's
                                      // p(V) top is that flat before its Newton iterations stall)
+  double level_ceiling = 1.0;        // stop where the level rises to this one (the full load, or the next output
+                                     // level of a path handed over ahead of its maximum) without a maximum
+  // Past a maximum by a fall of more than retrace_fall_fraction (10 drop_fractions), or with the
+  // parabola's vertex more than retrace_vertex_fraction above the largest traced state, the steps were
+  // too long to place the maximum: the top is traced again with quarter steps, at most max_retraces times.
+  double retrace_fall_fraction = 2e-3, retrace_vertex_fraction = 1e-4;
+  int max_retraces = 2;
+  // Stop at the first state whose tangent is indefinite while dλ/dV is still positive (a bifurcation
+  // from the traced branch). Known only where K is factorised: augmented_cg certifies indefiniteness
+  // by dλ/dV < 0 alone, so it cannot see one.
+  bool stop_at_bifurcation = false;
   bool verbose = false;              // print each volume step's Newton iterations (print_convergence_tables)
   // Solve each Newton iteration's two systems by CG on K + α∇V∇Vᵀ, preconditioned with the
   // Cholesky factor of the starting tangent, and factorise K only where that fails
@@ -75,8 +86,8 @@ struct VolumeControlProblem {
 /// From the equilibrium (x, level) follows the path in volume steps starting at
 /// `initial_volume_step` until the level has fallen `drop_fraction` below its
 /// maximum, or has fallen at all at a state whose own dλ/dV is negative (the
-/// tangent's answer, not the noise of a flat top), returns to 1 or more (the
-/// chamber stiffens again), or the steps run out. `previous`: the equilibrium
+/// tangent's answer, not the noise of a flat top), rises to settings.level_ceiling
+/// or more (the chamber stiffens again), or the steps run out. `previous`: the equilibrium
 /// state before (x, level) on the path, if known, so a maximum at (x, level)
 /// itself is recognised. On return x holds the state
 /// with the largest level and `level` its level; `states` starts with (x, level).
