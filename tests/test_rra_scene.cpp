@@ -308,3 +308,53 @@ TEST_CASE("Newton gives up early on an unstable branch and stops at the same lim
   REQUIRE(failed.size() >= 2);
   for (std::size_t k = 1; k < failed.size(); ++k) CHECK(failed[k] < failed[k - 1]);
 }
+
+TEST_CASE("handed to volume control ahead of its maximum, the tube finds the same maximum for less work", "[rra][limit][long]") {
+  // The ballooning tube again: pressure control stops before a step past the pressure where dp/dV,
+  // extrapolated from its last two states, falls to zero, and volume control traces the top from
+  // there; with the hand-over off, pressure control tries steps past the maximum until it stalls,
+  // and volume control starts there. The two must find the same maximum (the creeping reference
+  // above agrees with the latter to 2e-4), the first with fewer Newton iterations and factorisations.
+  const auto nh = test::material(std::make_shared<NeoHookean>(0.1153 / 2, VolumetricPolynomial({0.7029})), 1.08);
+  auto spec = plain_tube(nh, 60.0);
+  const auto ahead = run_rra_scene(spec);
+  spec.path.limit.hand_over_ahead = false;
+  const auto at_stall = run_rra_scene(spec);
+  INFO(ahead.path.diagnosis << "\n" << at_stall.path.diagnosis);
+  REQUIRE(ahead.path.limit_kind == LimitKind::traced);
+  REQUIRE(at_stall.path.limit_kind == LimitKind::traced);
+  CHECK(ahead.path.handed_over_kPa > 0);
+  CHECK(at_stall.path.handed_over_kPa == 0);
+  CHECK(ahead.path.diagnosis.find("handed the path over") != std::string::npos);
+  CHECK(ahead.path.estimated_limit_pressure_kPa == Approx(at_stall.path.estimated_limit_pressure_kPa).epsilon(2e-4));
+  INFO("Newton iterations " << ahead.path.path.stats.newton_iterations << " vs " << at_stall.path.path.stats.newton_iterations
+                            << "; factorisations " << ahead.path.factorizations << " vs " << at_stall.path.factorizations);
+  CHECK(ahead.path.path.stats.newton_iterations < at_stall.path.path.stats.newton_iterations);
+  CHECK(ahead.path.factorizations < at_stall.path.factorizations);
+  // Up to the hand-over both ran the same pressure-controlled steps.
+  REQUIRE(ahead.path.history.size() <= at_stall.path.history.size());
+  for (std::size_t i = 0; i < ahead.path.history.size(); ++i)
+    CHECK(ahead.path.history[i].chamber_volume_mm3 == at_stall.path.history[i].chamber_volume_mm3);
+}
+
+TEST_CASE("where volume control finds no maximum ahead, pressure control goes on as without the hand-over", "[rra][limit]") {
+  // The Dragon Skin 30 (Ogden) tube's dp/dV dips and recovers: from 22 kPa (a first step of a
+  // quarter of 88 kPa) it extrapolates to zero at 41.7 kPa, short of the next step, so pressure
+  // control hands over; volume control climbs to 88 kPa without a maximum, and pressure control goes
+  // on from the handed-over state. It must end where pressure control alone ends.
+  auto spec = plain_tube(builtin_material("dragon_skin_30", "test"), 88.0);
+  spec.path.output_pressures_kPa = {88.0};
+  spec.path.steps.initial_increment = 0.25;
+  const auto ahead = run_rra_scene(spec);
+  spec.path.limit.hand_over_ahead = false;
+  const auto alone = run_rra_scene(spec);
+  INFO(ahead.path.diagnosis << "\n" << alone.path.diagnosis);
+  REQUIRE(ahead.path.outcome == PathOutcome::completed);
+  REQUIRE(alone.path.outcome == PathOutcome::completed);
+  CHECK(ahead.path.handed_over_kPa == Approx(22.0));
+  CHECK(ahead.path.diagnosis.find("found no maximum before 88 kPa") != std::string::npos);
+  CHECK(ahead.path.beyond_limit.empty());
+  CHECK(ahead.path.history.back().chamber_volume_mm3 == Approx(alone.path.history.back().chamber_volume_mm3).epsilon(1e-9));
+  REQUIRE(ahead.curve.size() == alone.curve.size());
+  CHECK(ahead.curve.back().extension_mm == Approx(alone.curve.back().extension_mm).epsilon(1e-9));
+}

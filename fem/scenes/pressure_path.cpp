@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -55,6 +56,28 @@ double pv_stiffness(const EnergyProblem& problem, const LoadedVolume& chamber, L
 }
 
 std::string fmt(double v, int precision = 4) { return number_text(v, precision); }
+
+/// Where dp/dV of two converged states, extrapolated linearly in the pressure, falls to zero (+∞ where
+/// it is not falling).
+double stiffness_gone_kPa(const PressureState& prev, const PressureState& last) {
+  const double k = last.pv_stiffness_kPa_per_mm3, fall = prev.pv_stiffness_kPa_per_mm3 - k;
+  if (k <= 0.0) return last.pressure_kPa;
+  if (!(fall > 0.0)) return std::numeric_limits<double>::infinity();
+  return last.pressure_kPa + k * (last.pressure_kPa - prev.pressure_kPa) / fall;
+}
+
+/// The pressure maximum two converged states foresee: the vertex of the parabola p(V) through their
+/// slopes dp/dV (near a smooth maximum p* − p ∝ (V* − V)², so dp/dV falls to zero as √(p* − p)):
+/// p* = p₁ − (dp/dV)₁² / (2 d²p/dV²), d²p/dV² from the two slopes. p₁ where dp/dV is already gone;
+/// +∞ where it is not falling.
+double foreseen_peak_kPa(const PressureState& prev, const PressureState& last) {
+  const double k = last.pv_stiffness_kPa_per_mm3;
+  if (k <= 0.0) return last.pressure_kPa;
+  const double dV = last.chamber_volume_mm3 - prev.chamber_volume_mm3;
+  const double curvature = dV != 0.0 ? (k - prev.pv_stiffness_kPa_per_mm3) / dV : 0.0;
+  if (!(curvature < 0.0)) return std::numeric_limits<double>::infinity();
+  return last.pressure_kPa - k * k / (2 * curvature);
+}
 
 /// The lowest eigenvalue of the tangent at `x` (loads as they are), from a fresh factorisation;
 /// 0 when the tangent is not positive definite there.
@@ -183,12 +206,8 @@ void name_ballooning(const StopContext& c, PressurePathResult& out, const std::s
   out.limit_kind = LimitKind::pressure_volume;
   out.estimated_limit_pressure_kPa = last.pressure_kPa;
   if (out.history.size() >= 2) {
-    const PressureState& prev = out.history[out.history.size() - 2];
-    const double dV = last.chamber_volume_mm3 - prev.chamber_volume_mm3;
-    const double curvature = dV != 0.0 ? (last.pv_stiffness_kPa_per_mm3 - prev.pv_stiffness_kPa_per_mm3) / dV : 0.0;
-    if (curvature < 0.0 && last.pv_stiffness_kPa_per_mm3 > 0.0)
-      out.estimated_limit_pressure_kPa =
-          last.pressure_kPa - last.pv_stiffness_kPa_per_mm3 * last.pv_stiffness_kPa_per_mm3 / (2 * curvature);
+    const double peak = foreseen_peak_kPa(out.history[out.history.size() - 2], last);
+    if (std::isfinite(peak)) out.estimated_limit_pressure_kPa = peak;
   }
   // Volume control may have climbed past the last pressure-controlled state: the peak is no lower.
   out.estimated_limit_pressure_kPa = std::max(out.estimated_limit_pressure_kPa, out.reached_pressure_kPa);
@@ -387,12 +406,20 @@ void record_rest_state(const PathContext& c, const Vector& x, std::optional<Path
   if (log) log->append({0.0, c.spec.steps.initial_increment, s0, out.path.stats, x});
 }
 
+/// The last converged states of pressure control, (level, x), oldest first, at most three: where a
+/// path handed over to volume control goes on by pressure control, its start and predictor states.
+using RecentStates = std::vector<std::pair<double, Vector>>;
+
 /// Pressure control from `start` through the output levels: every converged state into the
-/// history (and the log), the preload's statistics added to the path's.
+/// history (and the log), the preload's statistics added to the path's. With `hand_over`, it stops
+/// (out.path.stopped) before a step past the pressure where dp/dV, extrapolated linearly from the last
+/// two states, falls to zero.
 void follow_pressure(const PathContext& c, Vector& x, const PathStart& start, std::optional<PathLog>& log,
-                     PressurePathResult& out) {
+                     bool hand_over, RecentStates& recent, PressurePathResult& out) {
   std::vector<double> levels;
   for (double p : c.spec.output_pressures_kPa) levels.push_back(p / c.spec.max_pressure_kPa);
+  recent = start.earlier;
+  recent.emplace_back(start.level, x);
   PathCallbacks callbacks;
   std::pair<double, const Vector*> converged{0.0, nullptr};  // the state on_converged was last given
   callbacks.apply_load = [&](double level) {
@@ -406,7 +433,14 @@ void follow_pressure(const PathContext& c, Vector& x, const PathStart& start, st
     out.history.push_back(s);
     if (c.on_state) c.on_state(s, xs, &report.last.hessian);
     converged = {level, &xs};
+    recent.emplace_back(level, xs);
+    if (recent.size() > 3) recent.erase(recent.begin());
   };
+  if (hand_over)
+    callbacks.stop_before = [&](double next_level) {
+      const std::size_t n = out.history.size();
+      return n >= 2 && stiffness_gone_kPa(out.history[n - 2], out.history[n - 1]) < next_level * c.spec.max_pressure_kPa;
+    };
   if (log)
     callbacks.on_increment = [&](double next_increment, const PathStatistics& stats) {
       log->append({converged.first, next_increment, out.history.back(), stats, *converged.second});
@@ -421,16 +455,15 @@ void follow_pressure(const PathContext& c, Vector& x, const PathStart& start, st
   out.reached_pressure_kPa = out.history.back().pressure_kPa;
 }
 
-/// Past a stall of pressure control by prescribing the chamber volume instead: true where that
-/// settles the answer (a traced limit point, or the requested pressure reached); false where the
-/// stop is still to be named, with what volume control saw in the diagnosis and x, the loads and
-/// reached pressure at the state to name it by.
-bool settled_by_volume_control(const PathContext& c, Vector& x, const Vector& x_stall, double ratio,
-                               PressurePathResult& out) {
+/// Volume control from the last converged state (x, at the history's last pressure) until it passes
+/// the pressure maximum or the level rises to `ceiling`: its states past the last one into
+/// beyond_limit; x and `level` at the traced state of the largest pressure (at least the last one's).
+VolumeControlResult trace_volume(const PathContext& c, Vector& x, double& level, double ceiling,
+                                 bool stop_at_bifurcation, PressurePathResult& out) {
   const PressurePathSpec& spec = c.spec;
-  const PressureState last = out.history.back();
+  const PressureState& last = out.history.back();
   const PressureState& prev = out.history[out.history.size() - 2];
-  double level = last.pressure_kPa / spec.max_pressure_kPa;
+  level = last.pressure_kPa / spec.max_pressure_kPa;
   const double step = std::max(last.chamber_volume_mm3 - prev.chamber_volume_mm3, 1e-4 * last.chamber_volume_mm3);
   VolumeControlProblem vp;
   vp.apply_level = c.set_pressures;
@@ -442,6 +475,8 @@ bool settled_by_volume_control(const PathContext& c, Vector& x, const Vector& x_
   VolumeControlSettings vc_settings;
   vc_settings.verbose = spec.steps.verbose;
   vc_settings.augmented_cg = spec.limit.volume_control_by_cg;
+  vc_settings.level_ceiling = ceiling;
+  vc_settings.stop_at_bifurcation = stop_at_bifurcation;
   const VolumeControlResult vc = follow_volume(c.problem, x, level, c.solver, vp, step, &before, vc_settings);
   for (std::size_t i = 1; i < vc.states.size(); ++i)
     out.beyond_limit.push_back({vc.states[i].level * spec.max_pressure_kPa, vc.states[i].volume,
@@ -451,17 +486,90 @@ bool settled_by_volume_control(const PathContext& c, Vector& x, const Vector& x_
                                 vc.states[i].tangent_positive_definite, vc.states[i].iterations, false});
   out.path.stats.newton_iterations += vc.newton_iterations;
   take_solver_costs(c.solver, out);
-  // x is now the traced state of the largest pressure (at least the last one's): report that one.
   out.reached_pressure_kPa = level * spec.max_pressure_kPa;
+  return vc;
+}
+
+/// Volume control passed the pressure maximum: a traced limit point, the returned state the one at
+/// the largest pressure. `how` says how pressure control came to hand it over.
+void name_traced_limit(const PathContext& c, const VolumeControlResult& vc, const PressureState& last,
+                       const std::string& how, PressurePathResult& out) {
+  out.outcome = PathOutcome::limit_point;
+  out.limit_kind = LimitKind::traced;
+  out.estimated_limit_pressure_kPa = vc.peak_level * c.spec.max_pressure_kPa;
+  out.diagnosis = "limit point (ballooning) at " + fmt(out.estimated_limit_pressure_kPa) +
+                  " kPa: chamber-volume control followed the path past the pressure maximum (" + vc.message +
+                  ", the loaded volume growing from " + fmt(last.chamber_volume_mm3) + " to " +
+                  fmt(vc.states.back().volume) + " mm³)" + how + ". Pressure control cannot pass it; this is the "
+                  "burst mode of this design. The returned state is the one at the largest pressure.";
+}
+
+/// Where pressure control stopped before a step past the pressure where dp/dV, extrapolated, falls to
+/// zero (LimitPointSettings::hand_over_ahead): true
+/// where volume control passes it before the next output level (a traced limit point); false, with x
+/// and the loads back at the handed-over state, where it does not.
+bool traced_ahead(const PathContext& c, Vector& x, PressurePathResult& out) {
+  const PressurePathSpec& spec = c.spec;
+  const PressureState last = out.history.back();
+  const double last_level = last.pressure_kPa / spec.max_pressure_kPa;
+  double ceiling = 1.0;  // the next output level
+  for (const double p : spec.output_pressures_kPa)
+    if (p / spec.max_pressure_kPa > last_level + 1e-12) {
+      ceiling = p / spec.max_pressure_kPa;
+      break;
+    }
+  const double stiffness_gone = stiffness_gone_kPa(out.history[out.history.size() - 2], last);
+  const Vector x_over = x;
+  double level = last_level;
+  out.handed_over_kPa = last.pressure_kPa;
+  const VolumeControlResult vc = trace_volume(c, x, level, ceiling, true, out);
   if (vc.passed_peak) {
-    out.outcome = PathOutcome::limit_point;
-    out.limit_kind = LimitKind::traced;
-    out.estimated_limit_pressure_kPa = vc.peak_level * spec.max_pressure_kPa;
-    out.diagnosis = "limit point (ballooning) at " + fmt(out.estimated_limit_pressure_kPa) +
-                    " kPa: chamber-volume control followed the path past the pressure maximum (" + vc.message +
-                    ", the loaded volume growing from " + fmt(last.chamber_volume_mm3) + " to " +
-                    fmt(vc.states.back().volume) + " mm³). Pressure control cannot pass it; this is the burst "
-                    "mode of this design. The returned state is the one at the largest pressure.";
+    name_traced_limit(c, vc, last,
+                      "; pressure control handed the path over at " + fmt(last.pressure_kPa) +
+                          " kPa, its dp/dV extrapolated to zero at " + fmt(stiffness_gone) + " kPa",
+                      out);
+    return true;
+  }
+  x = x_over;
+  c.set_pressures(last_level);
+  out.beyond_limit.clear();
+  out.reached_pressure_kPa = last.pressure_kPa;
+  out.diagnosis = " Volume control from " + fmt(last.pressure_kPa) + " kPa, where dp/dV extrapolated to zero at " +
+                  fmt(stiffness_gone) + " kPa, found no maximum before " + fmt(ceiling * spec.max_pressure_kPa) +
+                  " kPa (" + vc.message + "); pressure control went on from there.";
+  return false;
+}
+
+/// Volume control found no maximum ahead of the handed-over state: pressure control goes on from
+/// there, its step and predictor as they were, without handing over again.
+void go_on_by_pressure(const PathContext& c, Vector& x, RecentStates& recent, std::optional<PathLog>& log,
+                       PressurePathResult& out) {
+  PathStart start;
+  start.level = recent.back().first;
+  x = recent.back().second;
+  start.increment = out.path.next_level - start.level;
+  start.earlier.assign(recent.begin(), recent.end() - 1);
+  start.stats = out.path.stats;
+  start.resumed = true;  // the outputs up to the handed-over state are reached
+  out.path.stats = {};
+  c.set_pressures(start.level);
+  c.load.dirichlet_scale = start.level;
+  c.solver.factorize(c.problem.evaluate(x, true, true).hessian);
+  follow_pressure(c, x, start, log, false, recent, out);
+}
+
+/// Past a stall of pressure control by prescribing the chamber volume instead: true where that
+/// settles the answer (a traced limit point, or the requested pressure reached); false where the
+/// stop is still to be named, with what volume control saw in the diagnosis and x, the loads and
+/// reached pressure at the state to name it by.
+bool settled_by_volume_control(const PathContext& c, Vector& x, const Vector& x_stall, double ratio,
+                               PressurePathResult& out) {
+  const PressurePathSpec& spec = c.spec;
+  const PressureState last = out.history.back();
+  double level = 0.0;
+  const VolumeControlResult vc = trace_volume(c, x, level, 1.0, false, out);
+  if (vc.passed_peak) {
+    name_traced_limit(c, vc, last, "", out);
     return true;
   }
   if (level < 1.0) {
@@ -545,11 +653,20 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
   resumed = {};
   if (from_rest) record_rest_state(c, x, log, out);
 
-  // 2. Pressure control through the output pressures.
-  follow_pressure(c, x, start, log, out);
+  // 2. Pressure control through the output pressures, handed to volume control ahead of a maximum.
+  RecentStates recent;
+  const bool hand_over = spec.limit.hand_over_ahead && spec.limit.follow_with_volume_control;
+  follow_pressure(c, x, start, log, hand_over, recent, out);
+  std::string ahead_note;  // what volume control ahead of a maximum found where it did not settle the path
+  if (out.path.stopped) {
+    if (traced_ahead(c, x, out)) return out;
+    ahead_note = out.diagnosis;
+    out.diagnosis.clear();
+    go_on_by_pressure(c, x, recent, log, out);
+  }
   if (out.path.completed) {
     out.outcome = PathOutcome::completed;
-    out.diagnosis = "reached " + fmt(spec.max_pressure_kPa) + " kPa";
+    out.diagnosis = "reached " + fmt(spec.max_pressure_kPa) + " kPa" + (ahead_note.empty() ? "" : "." + ahead_note);
     return out;
   }
 
@@ -561,11 +678,14 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
   const bool try_volume_control = ratio < spec.limit.volume_control_fraction;
   const Vector x_stall = x;  // volume control moves x; the lowest-mode check looks at the stall
   if ((flattened || try_volume_control) && spec.limit.follow_with_volume_control && out.history.size() >= 2 &&
-      settled_by_volume_control(c, x, x_stall, ratio, out))
+      settled_by_volume_control(c, x, x_stall, ratio, out)) {
+    out.diagnosis += ahead_note;
     return out;
+  }
   const StopContext context{problem, elastic_form_of(problem), spec, solver, load, set_pressures, x_rest, x_stall,
                             last, ratio, flattened, flattening};
   name_the_stop(context, x, out);
+  out.diagnosis += ahead_note;
   return out;
 }
 

@@ -93,6 +93,17 @@ struct LimitPointSettings {
   /// with dp/dV at 41 % (issue 38): volume control traces both, to a maximum or to the requested
   /// pressure. A stall is reported only where volume control could not go on either.
   double volume_control_fraction = 1.0;
+  /// With follow_with_volume_control: hand the path to volume control before a step past the
+  /// pressure where dp/dV, extrapolated linearly in p from the last two states, falls to zero, rather
+  /// than try steps beyond a maximum. Each such try costs a run of indefinite Newton iterations and
+  /// shifted factorisations: the thesis 3CA's free end cell tried 4, and spent 114 Newton iterations
+  /// and 70 shifted factorisations, before volume control traced its maximum. (Linear, not the
+  /// parabola p(V) that name_ballooning's estimate uses: that one foresaw this cell's maximum at
+  /// 299.8 kPa from 275.8, where volume control stalled; pressure control reaches 310.2, and the
+  /// maximum is at 314.1.) Where volume control finds no maximum before the next output level, or a
+  /// bifurcation before it, pressure control goes on from the handed-over state as it would have.
+  /// Config: solver.volume_control_ahead_of_limit.
+  bool hand_over_ahead = true;
   /// Where pressure control stalls with dp/dV still high, compare the tangent's lowest
   /// eigenvalue with its value at rest (fem/solver/lowest_modes.hpp): one that has fallen below
   /// lowest_mode_fraction of it is a local instability (a wall ballooning between rings) that the
@@ -117,6 +128,7 @@ struct PressurePathResult {
   double estimated_limit_pressure_kPa = 0.0;  // peak of p(V) when a limit point is found: traced past by
                                               // volume control, or extrapolated from the last states
   LimitKind limit_kind = LimitKind::none;     // with outcome limit_point: how it was found
+  double handed_over_kPa = 0.0;  // where pressure control handed over to volume control ahead of a maximum (0: nowhere)
   MaterialInstability material;  // with outcome material_instability: where the law is unstable at the state reached
   int inverted_element = -1;     // with outcome element_inversion: the element the last step turned inside out
   PathResult path;

@@ -74,6 +74,11 @@ void read_solver(JsonReader solver, fem::NewtonSettings& nw, fem::StepSettings& 
       "volume_control_stiffness_fraction", limit.volume_control_fraction, Range::closed(0, 1),
       "where pressure control fails with dp/dV below this fraction of its initial value, chamber-volume control "
       "follows the path from there to find a pressure maximum (ballooning); 1: at every stall");
+  limit.hand_over_ahead = solver.boolean(
+      "volume_control_ahead_of_limit", limit.hand_over_ahead,
+      "hand the path to chamber-volume control before a step past the pressure where dp/dV, extrapolated linearly "
+      "from the last two states, falls to zero, rather than try steps past a maximum; where volume control finds none "
+      "before the next output pressure, pressure control goes on (off: volume control only at a stall)");
   limit.lowest_mode_fraction = solver.number(
       "lowest_mode_fraction", limit.lowest_mode_fraction, Range::closed(0, 1),
       "at a stall with dp/dV above the threshold, the tangent's lowest eigenvalue below this fraction of its value at "
