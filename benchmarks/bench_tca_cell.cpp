@@ -133,6 +133,11 @@ int main(int argc, char** argv) try {
                   end == fem::TcaEnd::top ? "clamped" : "free", end_rings, e.length_mm, e.element_name.c_str(), e.dofs,
                   e.path.path.stats.newton_iterations, e.seconds, fem::to_string(e.path.outcome),
                   e.path.diagnosis.empty() ? "" : (": " + e.path.diagnosis).c_str());
+      std::printf("  costs: %d factorisations (%d shifted, %d LU) %.2f s, solves %.2f s (%d by CG on an earlier factor, "
+                  "%d CG iterations), analysis %.2f s; %d states by pressure control, %d beyond by volume control\n",
+                  e.path.factorizations, e.path.shifted_factorizations, e.path.lu_fallbacks, e.path.factorize_s,
+                  e.path.solve_s, e.path.reused_solves, e.path.cg_iterations, e.path.analyse_s,
+                  static_cast<int>(e.path.history.size()), static_cast<int>(e.path.beyond_limit.size()));
       std::printf("%12s %12s %14s %12s %14s\n", "pressure_kPa", "turn_deg", "cells_turn_deg", "extra_deg",
                   "elongation_mm");
       // The cells' turn over the same length, as the weightless rod without ends integrates it
