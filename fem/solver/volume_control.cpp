@@ -211,8 +211,8 @@ VolumeControlResult follow_volume(const EnergyProblem& problem, Vector& x, doubl
     step_start_x = x;
     // K indefinite where dλ/dV is still positive: a mode the volume does not see has gone unstable
     // (a bifurcation). Pressure control's path turns off the traced branch there, so a maximum
-    // further along it is not this path's (a thin neo-Hookean tube: the branch bifurcates at
-    // 30.65 kPa and folds at 30.70).
+    // further along it is not this path's. (A guard for paths handed over ahead of their maximum:
+    // none of the scenes' tests meets one.)
     if (settings.stop_at_bifurcation && !state.tangent_positive_definite && state.level_slope_per_mm3 > 0) {
       out.message = "the tangent lost positive definiteness at level " + fmt(level) +
                     " with the pressure still rising (a bifurcation)";
