@@ -6,10 +6,14 @@
 #include <nlohmann/json.hpp>
 
 #include "fem/scenes/pressure_path.hpp"
+#include "fem/scenes/solver_work.hpp"
 
 namespace softarm::engine {
 
 nlohmann::json path_solver_json(const fem::PressurePathResult& path);
+
+/// The "solver" block of a cell rod's summary.json: its cells' paths, summed (fem/scenes/solver_work.hpp).
+nlohmann::json cells_solver_json(const fem::SolverWork& work);
 
 /// What a path that ended in a failure found, added to a summary beside its "outcome": a limit
 /// point's pressure and how it was found; where the law lost Drucker stability and at which stretch;

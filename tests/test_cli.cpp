@@ -320,6 +320,15 @@ TEST_CASE("simulate on the SPL config's own model: the cell rod, its cells and j
   // Every segment's top is bonded, and so are the bottoms but the tip's: each bonded end twists less
   // than its cells over the same length (its face cannot warp, its cap is solid).
   const nlohmann::json j = nlohmann::json::parse(summary);
+  // The cells' solves, summed: nine ring-pitch cells and the end cells; segment 3's three cells
+  // alone take a Newton iteration at each of their 16 output levels at least, and factorise.
+  const nlohmann::json& solver = j.at("solver");
+  INFO(solver.dump());
+  CHECK(solver.at("cell_paths").get<int>() == 9 + j.at("end_cells").get<int>());
+  CHECK(solver.at("newton_iterations").get<int>() >= 3 * 16);
+  CHECK(solver.at("factorizations").get<int>() >= 3);
+  CHECK(solver.at("cell_dofs_summed").get<long long>() >=
+        j.at("largest_cell_dofs").get<long long>() + j.at("largest_end_cell_dofs").get<long long>());
   REQUIRE(j.at("cells").size() == 3);
   for (const auto& segment : j.at("cells")) {
     INFO("segment " << segment.at("segment"));

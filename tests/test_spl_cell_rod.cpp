@@ -11,12 +11,42 @@
 
 #include "fem/core/json_reader.hpp"
 #include "fem/scenes/scene_config.hpp"
+#include "fem/scenes/spl_cell_job.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
 #include "fem/scenes/tca_cell_rod.hpp"
 #include "support/short_spl.hpp"
 
 using namespace softarm::fem;
 using nlohmann::json;
+
+TEST_CASE("a cell job's solver work travels between processes with its table, exactly", "[cell][spl]") {
+  // MPI ranks return their cells as text (spl_cell_job.hpp): the counts and seconds come back too.
+  CellJobResult r;
+  r.dofs = 15444;
+  r.work.paths = 1;
+  r.work.dofs = 15444;
+  r.work.newton_iterations = 123;
+  r.work.factorizations = 66;
+  r.work.shifted_factorizations = 70;
+  r.work.lu_fallbacks = 3;
+  r.work.cg_iterations = 1111;
+  r.work.seconds = 48.812345678901234;
+  const CellJobResult back = cell_job_from_text(to_text(r));
+  CHECK(back.work.paths == 1);
+  CHECK(back.work.dofs == 15444);
+  CHECK(back.work.newton_iterations == 123);
+  CHECK(back.work.factorizations == 66);
+  CHECK(back.work.shifted_factorizations == 70);
+  CHECK(back.work.lu_fallbacks == 3);
+  CHECK(back.work.cg_iterations == 1111);
+  CHECK(back.work.seconds == r.work.seconds);
+  SolverWork sum;
+  sum.add(back.work);
+  sum.add(back.work);
+  CHECK(sum.paths == 2);
+  CHECK(sum.newton_iterations == 246);
+  CHECK(sum.seconds == 2 * r.work.seconds);
+}
 
 TEST_CASE("The SPL cell rod bends a lone distal segment as the 3CA cell rod does", "[cell][spl][long]") {
   SplSceneSpec spl = load_scene_config(std::string(SOFTARM_SOURCE_DIR) + "/configs/spl_thesis_pose.json").spl;

@@ -60,6 +60,7 @@ CellJobResult run_cell_job(const TcaSceneSpec& scene, int ring, bool with_torsio
   take_path(cell.path, out);
   out.dofs = cell.dofs;
   out.half_model = cell.model.half;
+  out.work.add(cell.path, cell.dofs, cell.seconds);
   if (with_torsion) out.torsion = cell_torsion_stiffness(scene, ring);
   return out;
 }
@@ -72,6 +73,7 @@ CellJobResult run_end_cell_job(const TcaSceneSpec& scene, TcaEnd end, int rings,
   take_path(cell.path, out);
   out.dofs = cell.dofs;
   out.half_model = cell.model.half;
+  out.work.add(cell.path, cell.dofs, cell.seconds);
   if (with_torsion && face == EndFaceSupport::bonded) out.torsion = end_cell_twist_compliance(scene, end, rings);
   return out;
 }
@@ -102,7 +104,16 @@ std::string to_text(const CellJobResult& r) {
       {"diagnosis", r.diagnosis},
       {"dofs", r.dofs},
       {"half_model", r.half_model},
-      {"torsion", number(r.torsion)}};
+      {"torsion", number(r.torsion)},
+      {"work",
+       {{"paths", r.work.paths},
+        {"dofs", r.work.dofs},
+        {"newton_iterations", r.work.newton_iterations},
+        {"factorizations", r.work.factorizations},
+        {"shifted_factorizations", r.work.shifted_factorizations},
+        {"lu_fallbacks", r.work.lu_fallbacks},
+        {"cg_iterations", r.work.cg_iterations},
+        {"seconds", r.work.seconds}}}};
   return j.dump();
 }
 
@@ -132,6 +143,15 @@ CellJobResult cell_job_from_text(const std::string& text) {
   r.dofs = j.at("dofs").get<int>();
   r.half_model = j.at("half_model").get<bool>();
   r.torsion = number(j.at("torsion"));
+  const json& w = j.at("work");
+  r.work.paths = w.at("paths").get<int>();
+  r.work.dofs = w.at("dofs").get<long long>();
+  r.work.newton_iterations = w.at("newton_iterations").get<int>();
+  r.work.factorizations = w.at("factorizations").get<int>();
+  r.work.shifted_factorizations = w.at("shifted_factorizations").get<int>();
+  r.work.lu_fallbacks = w.at("lu_fallbacks").get<int>();
+  r.work.cg_iterations = w.at("cg_iterations").get<int>();
+  r.work.seconds = w.at("seconds").get<double>();
   return r;
 }
 

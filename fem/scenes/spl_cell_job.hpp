@@ -11,6 +11,7 @@
 
 #include "fem/reduced/spatial_cell_rod.hpp"
 #include "fem/scenes/pressure_path.hpp"
+#include "fem/scenes/solver_work.hpp"
 #include "fem/scenes/tca_end_cell.hpp"
 #include "fem/scenes/tca_scene.hpp"
 
@@ -28,6 +29,7 @@ struct CellJobResult {
   /// A cell: its torsional stiffness GJ at rest, N·mm²; an end cell: its twist compliance at rest,
   /// rad/(N·mm). 0 where not measured; NaN where the tangent at rest is not positive definite.
   double torsion = 0;
+  SolverWork work;  // its path's solves (not its torsion's)
 };
 
 /// Ring `ring`'s cell of `scene` (tca_cell.hpp) and, `with_torsion`, its GJ at rest.

@@ -200,6 +200,7 @@ SplCells spl_cells(const SplSceneSpec& spec, int cell_levels, const std::functio
   CellPlan plan;
   if (!plan_cells(spec, cell_levels, adjust, out, plan)) return out;
   const std::vector<CellJobResult> results = run_cells(plan, out, with_torsion, spread, progress);
+  for (const CellJobResult& r : results) out.work.add(r.work);
   note_segment_stops(plan, results, out);
   if (!take_end_cells(plan, results, out) || !take_cells(plan, results, with_torsion, out)) return out;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

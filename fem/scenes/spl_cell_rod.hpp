@@ -20,6 +20,7 @@
 
 #include "fem/core/parallel.hpp"
 #include "fem/reduced/spatial_cell_rod.hpp"
+#include "fem/scenes/solver_work.hpp"
 #include "fem/scenes/spl_cell_job.hpp"
 #include "fem/scenes/spl_scene.hpp"
 #include "fem/scenes/tca_end_cell.hpp"
@@ -46,6 +47,7 @@ struct SplCells {
   int end_cells = 0, largest_end_cell_dofs = 0;
   std::string end_cells_note;                  // the segments without end cells, and why
   double seconds = 0;                          // wall time of all the cells (run side by side)
+  SolverWork work;                             // the cells' and end cells' paths' solves, summed
   std::vector<PathOutcome> outcomes;           // per end cell, then per cell, in order
   /// Per segment, over its cells and end cells: the one that stopped at the lowest pressure (its
   /// outcome, completed where every one reached its peak) and that pressure (of its most pressurised

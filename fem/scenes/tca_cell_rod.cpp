@@ -124,6 +124,8 @@ CellRodTcaResult pose_cell_rod_tca(const TcaSceneSpec& spec, const TcaRodCells& 
   const auto& torsion = pieces.torsion;
   const auto& end_twist = pieces.end_twist;
   out.cell_seconds = pieces.seconds;
+  for (const auto& c : cells) out.work.add(c.path, c.dofs, c.seconds);
+  for (const auto& e : ends) out.work.add(e.path, e.dofs, e.seconds);
   out.cell_dofs = cells.back().dofs;
   out.end_cell_dofs = ends.empty() ? 0 : ends.back().dofs;
   const CellRodSpec rod = tca_cell_rod(spec, cells, ends);

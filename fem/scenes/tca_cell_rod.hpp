@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "fem/core/parallel.hpp"
+#include "fem/scenes/solver_work.hpp"
 #include "fem/scenes/tca_cell.hpp"
 
 namespace softarm::fem {
@@ -39,6 +40,7 @@ struct CellRodTcaResult {
   int cell_dofs = 0;                           // of one cell
   int end_cell_dofs = 0;                       // of one end cell (0: none)
   double cell_seconds = 0, rod_seconds = 0;
+  SolverWork work;                             // the cells' and end cells' paths' solves, summed
 };
 CellRodTcaResult run_cell_rod_tca(const TcaSceneSpec& spec, const TaskProgress& progress = {});
 

@@ -1,0 +1,27 @@
+#include "fem/scenes/solver_work.hpp"
+
+namespace softarm::fem {
+
+void SolverWork::add(const PressurePathResult& path, int path_dofs, double path_seconds) {
+  ++paths;
+  dofs += path_dofs;
+  newton_iterations += path.path.stats.newton_iterations;
+  factorizations += path.factorizations;
+  shifted_factorizations += path.shifted_factorizations;
+  lu_fallbacks += path.lu_fallbacks;
+  cg_iterations += path.cg_iterations;
+  seconds += path_seconds;
+}
+
+void SolverWork::add(const SolverWork& other) {
+  paths += other.paths;
+  dofs += other.dofs;
+  newton_iterations += other.newton_iterations;
+  factorizations += other.factorizations;
+  shifted_factorizations += other.shifted_factorizations;
+  lu_fallbacks += other.lu_fallbacks;
+  cg_iterations += other.cg_iterations;
+  seconds += other.seconds;
+}
+
+}  // namespace softarm::fem
