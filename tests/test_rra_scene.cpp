@@ -309,7 +309,7 @@ TEST_CASE("Newton gives up early on an unstable branch and stops at the same lim
   for (std::size_t k = 1; k < failed.size(); ++k) CHECK(failed[k] < failed[k - 1]);
 }
 
-TEST_CASE("handed to volume control ahead of its maximum, the tube finds the same maximum for less work", "[rra][limit][long]") {
+TEST_CASE("handed to volume control ahead of its maximum, or once a step past it failed, the tube finds the same maximum for less work", "[rra][limit][long]") {
   // The ballooning tube again: pressure control stops before a step past the pressure where dp/dV,
   // extrapolated from its last two states, falls to zero, and volume control traces the top from
   // there; with the hand-over off, pressure control tries steps past the maximum until it stalls,
@@ -319,22 +319,38 @@ TEST_CASE("handed to volume control ahead of its maximum, the tube finds the sam
   auto spec = plain_tube(nh, 60.0);
   const auto ahead = run_rra_scene(spec);
   spec.path.limit.hand_over_ahead = false;
+  const auto after_failure = run_rra_scene(spec);
+  spec.path.limit.hand_over_after_failure = false;
   const auto at_stall = run_rra_scene(spec);
-  INFO(ahead.path.diagnosis << "\n" << at_stall.path.diagnosis);
+  INFO(ahead.path.diagnosis << "\n" << after_failure.path.diagnosis << "\n" << at_stall.path.diagnosis);
   REQUIRE(ahead.path.limit_kind == LimitKind::traced);
+  REQUIRE(after_failure.path.limit_kind == LimitKind::traced);
   REQUIRE(at_stall.path.limit_kind == LimitKind::traced);
   CHECK(ahead.path.handed_over_kPa > 0);
   CHECK(at_stall.path.handed_over_kPa == 0);
   CHECK(ahead.path.diagnosis.find("handed the path over") != std::string::npos);
   CHECK(ahead.path.estimated_limit_pressure_kPa == Approx(at_stall.path.estimated_limit_pressure_kPa).epsilon(2e-4));
-  INFO("Newton iterations " << ahead.path.path.stats.newton_iterations << " vs " << at_stall.path.path.stats.newton_iterations
-                            << "; factorisations " << ahead.path.factorizations << " vs " << at_stall.path.factorizations);
+  INFO("Newton iterations " << ahead.path.path.stats.newton_iterations << ", " << after_failure.path.path.stats.newton_iterations
+                            << " vs " << at_stall.path.path.stats.newton_iterations << "; factorisations "
+                            << ahead.path.factorizations << ", " << after_failure.path.factorizations << " vs "
+                            << at_stall.path.factorizations);
   CHECK(ahead.path.path.stats.newton_iterations < at_stall.path.path.stats.newton_iterations);
   CHECK(ahead.path.factorizations < at_stall.path.factorizations);
   // Up to the hand-over both ran the same pressure-controlled steps.
   REQUIRE(ahead.path.history.size() <= at_stall.path.history.size());
   for (std::size_t i = 0; i < ahead.path.history.size(); ++i)
     CHECK(ahead.path.history[i].chamber_volume_mm3 == at_stall.path.history[i].chamber_volume_mm3);
+  // Handed over once a step past the last state has failed (the 3D scenes' way): after the first
+  // failure, not at the stall, for less work than the stall's and the same maximum.
+  REQUIRE_FALSE(after_failure.path.path.stats.failed_levels.empty());
+  CHECK(after_failure.path.handed_over_kPa > 0);
+  CHECK(after_failure.path.handed_over_kPa < at_stall.path.history.back().pressure_kPa);
+  CHECK(after_failure.path.path.stats.failed_levels.front() * spec.path.max_pressure_kPa > after_failure.path.handed_over_kPa);
+  CHECK(after_failure.path.diagnosis.find("where a step past it had failed") != std::string::npos);
+  CHECK(after_failure.path.estimated_limit_pressure_kPa ==
+        Approx(at_stall.path.estimated_limit_pressure_kPa).epsilon(2e-4));
+  CHECK(after_failure.path.path.stats.newton_iterations < at_stall.path.path.stats.newton_iterations);
+  CHECK(after_failure.path.factorizations < at_stall.path.factorizations);
 }
 
 TEST_CASE("where volume control finds no maximum ahead, pressure control goes on as without the hand-over", "[rra][limit]") {
@@ -347,6 +363,7 @@ TEST_CASE("where volume control finds no maximum ahead, pressure control goes on
   spec.path.steps.initial_increment = 0.25;
   const auto ahead = run_rra_scene(spec);
   spec.path.limit.hand_over_ahead = false;
+  spec.path.limit.hand_over_after_failure = false;
   const auto alone = run_rra_scene(spec);
   INFO(ahead.path.diagnosis << "\n" << alone.path.diagnosis);
   REQUIRE(ahead.path.outcome == PathOutcome::completed);

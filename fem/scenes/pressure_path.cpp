@@ -410,12 +410,29 @@ void record_rest_state(const PathContext& c, const Vector& x, std::optional<Path
 /// path handed over to volume control goes on by pressure control, its start and predictor states.
 using RecentStates = std::vector<std::pair<double, Vector>>;
 
+/// When pressure control hands the path to volume control ahead of a maximum (LimitPointSettings):
+/// never; before any step past the pressure where dp/dV, extrapolated, falls to zero; or before
+/// such a step only once a step past the last converged state has failed from every start.
+enum class HandOver { never, ahead, after_failure };
+
+HandOver hand_over_of(const LimitPointSettings& limit) {
+  if (!limit.follow_with_volume_control) return HandOver::never;
+  if (limit.hand_over_ahead) return HandOver::ahead;
+  return limit.hand_over_after_failure ? HandOver::after_failure : HandOver::never;
+}
+
+/// Whether a step past the path's last converged state (at `level`) has failed from every start.
+bool failed_past(const PathStatistics& stats, double level) {
+  return std::any_of(stats.failed_levels.begin(), stats.failed_levels.end(),
+                     [&](double failed) { return failed > level + 1e-12; });
+}
+
 /// Pressure control from `start` through the output levels: every converged state into the
-/// history (and the log), the preload's statistics added to the path's. With `hand_over`, it stops
-/// (out.path.stopped) before a step past the pressure where dp/dV, extrapolated linearly from the last
-/// two states, falls to zero.
+/// history (and the log), the preload's statistics added to the path's. Unless `hand_over` is
+/// never, it stops (out.path.stopped) before a step past the pressure where dp/dV, extrapolated
+/// linearly from the last two states, falls to zero (HandOver).
 void follow_pressure(const PathContext& c, Vector& x, const PathStart& start, std::optional<PathLog>& log,
-                     bool hand_over, RecentStates& recent, PressurePathResult& out) {
+                     HandOver hand_over, RecentStates& recent, PressurePathResult& out) {
   std::vector<double> levels;
   for (double p : c.spec.output_pressures_kPa) levels.push_back(p / c.spec.max_pressure_kPa);
   recent = start.earlier;
@@ -436,10 +453,13 @@ void follow_pressure(const PathContext& c, Vector& x, const PathStart& start, st
     recent.emplace_back(level, xs);
     if (recent.size() > 3) recent.erase(recent.begin());
   };
-  if (hand_over)
-    callbacks.stop_before = [&](double next_level) {
+  if (hand_over != HandOver::never)
+    callbacks.stop_before = [&, hand_over](double next_level, const PathStatistics& stats) {
       const std::size_t n = out.history.size();
-      return n >= 2 && stiffness_gone_kPa(out.history[n - 2], out.history[n - 1]) < next_level * c.spec.max_pressure_kPa;
+      if (n < 2) return false;
+      const double level = out.history.back().pressure_kPa / c.spec.max_pressure_kPa;
+      if (hand_over == HandOver::after_failure && !failed_past(stats, level)) return false;
+      return stiffness_gone_kPa(out.history[n - 2], out.history[n - 1]) < next_level * c.spec.max_pressure_kPa;
     };
   if (log)
     callbacks.on_increment = [&](double next_increment, const PathStatistics& stats) {
@@ -505,7 +525,7 @@ void name_traced_limit(const PathContext& c, const VolumeControlResult& vc, cons
 }
 
 /// Where pressure control stopped before a step past the pressure where dp/dV, extrapolated, falls to
-/// zero (LimitPointSettings::hand_over_ahead): true where volume control passes a maximum before the
+/// zero (LimitPointSettings::hand_over_ahead, hand_over_after_failure): true where volume control passes a maximum before the
 /// next output level (a traced limit point); false, with x and the loads back at the handed-over
 /// state and what volume control found in the diagnosis, where it does not.
 bool traced_ahead(const PathContext& c, Vector& x, PressurePathResult& out) {
@@ -524,9 +544,11 @@ bool traced_ahead(const PathContext& c, Vector& x, PressurePathResult& out) {
   out.handed_over_kPa = last.pressure_kPa;
   const VolumeControlResult vc = trace_volume(c, x, level, ceiling, true, out);
   if (vc.passed_peak) {
+    const bool after_failure = failed_past(out.path.stats, last_level);
     name_traced_limit(c, vc, last,
-                      "; pressure control handed the path over at " + fmt(last.pressure_kPa) +
-                          " kPa, its dp/dV extrapolated to zero at " + fmt(stiffness_gone) + " kPa",
+                      "; pressure control handed the path over at " + fmt(last.pressure_kPa) + " kPa, " +
+                          (after_failure ? "where a step past it had failed and " : "") +
+                          "its dp/dV extrapolated to zero at " + fmt(stiffness_gone) + " kPa",
                       out);
     return true;
   }
@@ -555,7 +577,7 @@ void go_on_by_pressure(const PathContext& c, Vector& x, RecentStates& recent, st
   c.set_pressures(start.level);
   c.load.dirichlet_scale = start.level;
   c.solver.factorize(c.problem.evaluate(x, true, true).hessian);
-  follow_pressure(c, x, start, log, false, recent, out);
+  follow_pressure(c, x, start, log, HandOver::never, recent, out);
 }
 
 /// Past a stall of pressure control by prescribing the chamber volume instead: true where that
@@ -655,8 +677,7 @@ PressurePathResult run_pressure_path(const EnergyProblem& problem, const std::ve
 
   // 2. Pressure control through the output pressures, handed to volume control ahead of a maximum.
   RecentStates recent;
-  const bool hand_over = spec.limit.hand_over_ahead && spec.limit.follow_with_volume_control;
-  follow_pressure(c, x, start, log, hand_over, recent, out);
+  follow_pressure(c, x, start, log, hand_over_of(spec.limit), recent, out);
   std::string ahead_note;  // what volume control ahead of a maximum found where it did not settle the path
   if (out.path.stopped) {
     if (traced_ahead(c, x, out)) return out;

@@ -79,6 +79,10 @@ void read_solver(JsonReader solver, fem::NewtonSettings& nw, fem::StepSettings& 
       "hand the path to chamber-volume control before a step past the pressure where dp/dV, extrapolated linearly "
       "from the last two states, falls to zero, rather than try steps past a maximum; where volume control finds none "
       "before the next output pressure, pressure control goes on (off: volume control only at a stall)");
+  limit.hand_over_after_failure = solver.boolean(
+      "volume_control_after_failed_step", limit.hand_over_after_failure,
+      "where volume_control_ahead_of_limit is off: the same hand-over, once a step past the last converged state "
+      "has failed from every start (off: volume control only at a stall)");
   limit.lowest_mode_fraction = solver.number(
       "lowest_mode_fraction", limit.lowest_mode_fraction, Range::closed(0, 1),
       "at a stall with dp/dV above the threshold, the tangent's lowest eigenvalue below this fraction of its value at "

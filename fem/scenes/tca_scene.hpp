@@ -54,9 +54,10 @@ struct TcaSceneSpec {
   NewtonSettings newton{.shift_indefinite_tangent = true, .reuse_factor = true, .max_indefinite_iterations = 4,
                         .rotate_stiff_parts = true};
   StepSettings steps;
-  // 3D: volume control by CG, and only where pressure control stalls: handed over ahead of the
-  // maximum, the thesis 3CA's free end cell took as long (56.6 s against 53.6 s; bench_tca_cell
-  // --end-rings 2): volume control's CG from 310 kPa costs what pressure control's failed tries did.
+  // 3D: volume control by CG, handed over only once a step past the last state has failed:
+  // handed over ahead of the maximum, the thesis 3CA's free end cell took as long (56.6 s against
+  // 53.6 s; bench_tca_cell --end-rings 2): volume control's CG from 310 kPa costs what pressure
+  // control's failed tries did (LimitPointSettings::hand_over_after_failure).
   LimitPointSettings limit{.hand_over_ahead = false, .volume_control_by_cg = true};
   PathCheckpoint checkpoint;  // the whole 3CA's path only (not the cell rod's cells)
 };

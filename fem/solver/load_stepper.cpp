@@ -182,7 +182,7 @@ PathResult follow_load_path(const EnergyProblem& problem, Vector& x, LinearSolve
     const double target = output_levels[first_output + path.landed()];
     const double next_level = path.next_level(target);
     const bool lands = target - next_level <= kLandingTolerance;
-    if (callbacks.stop_before && callbacks.stop_before(next_level)) {
+    if (callbacks.stop_before && callbacks.stop_before(next_level, result.stats)) {
       result.stopped = true;
       result.next_level = next_level;
       result.message = "stopped before the step to level " + std::to_string(next_level);

@@ -61,10 +61,11 @@ struct PathCallbacks {
   /// Called after on_converged with the increment the controller will try next: with the
   /// converged states, what a resumed path needs to go on as this one would (PathStart).
   std::function<void(double next_increment, const PathStatistics& stats)> on_increment = {};
-  /// Asked before each step with the level it would try: true stops the path at the converged state
-  /// it holds (PathResult::stopped), for a caller that sees a limit point ahead and would rather
-  /// pass it another way than try steps beyond it (fem/scenes/pressure_path.cpp).
-  std::function<bool(double next_level)> stop_before = {};
+  /// Asked before each step with the level it would try and the path's statistics so far (the
+  /// levels every start failed at among them): true stops the path at the converged state it holds
+  /// (PathResult::stopped), for a caller that sees a limit point ahead and would rather pass it
+  /// another way than try steps beyond it (fem/scenes/pressure_path.cpp).
+  std::function<bool(double next_level, const PathStatistics& stats)> stop_before = {};
 };
 
 /// Where a path starts: at rest (level 0, no history, the initial increment), or where an
