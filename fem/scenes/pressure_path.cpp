@@ -525,9 +525,9 @@ void name_traced_limit(const PathContext& c, const VolumeControlResult& vc, cons
 }
 
 /// Where pressure control stopped before a step past the pressure where dp/dV, extrapolated, falls to
-/// zero (LimitPointSettings::hand_over_ahead, hand_over_after_failure): true where volume control passes a maximum before the
-/// next output level (a traced limit point); false, with x and the loads back at the handed-over
-/// state and what volume control found in the diagnosis, where it does not.
+/// zero (LimitPointSettings::hand_over_ahead, hand_over_after_failure): true where volume control
+/// passes a maximum before the next output level (a traced limit point); false, with x and the loads
+/// back at the handed-over state and what volume control found in the diagnosis, where it does not.
 bool traced_ahead(const PathContext& c, Vector& x, PressurePathResult& out) {
   const PressurePathSpec& spec = c.spec;
   const PressureState last = out.history.back();
