@@ -168,6 +168,16 @@ GradientOperator<E> gradient_operator(const ReferencePoint<E>& p) {
   return B;
 }
 
+/// out += s Bᵀ v for v over the active components (F_rR, F_rZ, F_zR, F_zZ, F_θΘ): the r-dof of
+/// node a meets components {0, 1, 4}, the z-dof {2, 3} (gradient_operator), not the dense product.
+template <class E, class Out>
+void add_Bt_times(const ReferencePoint<E>& p, const Eigen::Matrix<double, kActive, 1>& v, double s, Out& out) {
+  for (int a = 0; a < E::kNodes; ++a) {
+    out[2 * a] += s * (p.dN_dR[a] * v[0] + p.dN_dZ[a] * v[1] + p.N[a] / p.R * v[4]);
+    out[2 * a + 1] += s * (p.dN_dR[a] * v[2] + p.dN_dZ[a] * v[3]);
+  }
+}
+
 /// Upper triangle (row <= column) of K += Bᵀ D B for a symmetric 5×5 D, using the structure of B:
 /// the r-dof of node a touches rows {0, 1, 4} (∂N/∂R, ∂N/∂Z, N/R) and the z-dof rows {2, 3}. About
 /// four times cheaper than the dense product. K is row-major so that each row's update runs over

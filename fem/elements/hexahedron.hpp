@@ -211,6 +211,17 @@ GradientOperator<E> gradient_operator(const ReferencePoint<E>& p) {
   return B;
 }
 
+/// out += s Bᵀ v for v over F's nine components (row-major): dof (a, i) meets components 3i + J
+/// with weight ∂N_a/∂X_J (gradient_operator), so out(3a + i) += s Σ_J ∂N_a/∂X_J v(3i + J): the three
+/// non-zeros of each column of B rather than the dense product (a third of its multiplications, and
+/// no B to build at each point).
+template <class E, class Out>
+void add_Bt_times(const ReferencePoint<E>& p, const Eigen::Matrix<double, kActive, 1>& v, double s, Out& out) {
+  for (int a = 0; a < E::kNodes; ++a)
+    for (int i = 0; i < 3; ++i)
+      out[3 * a + i] += s * (p.dN_dX(a, 0) * v[3 * i] + p.dN_dX(a, 1) * v[3 * i + 1] + p.dN_dX(a, 2) * v[3 * i + 2]);
+}
+
 namespace detail {
 /// The body of add_BtDB_upper on raw arrays: DB = D B (9 × 3n, row-major), then for each row r of
 /// K (row-major, 3n × 3n), K(r, c) += a0·DB(3i, c) + a1·DB(3i+1, c) + a2·DB(3i+2, c) for c ≥ r,

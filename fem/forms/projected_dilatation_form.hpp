@@ -9,7 +9,7 @@
 // element type E (kNodes, kGaussPoints, kDilatationModes, name):
 //   ReferencePoint<E> (members dV and phi), and the functions found by
 //   argument-dependent lookup reference_points<E>, deformation_gradient<E>,
-//   gradient_operator<E> and add_BtDB_upper<E>, working on the `Active` components
+//   add_Bt_times<E> and add_BtDB_upper<E>, working on the `Active` components
 //   `Components` (row 3i+J of the row-major 9-vector of F) that vary in that family.
 // Included only by the .cpp files that instantiate it.
 #include <Eigen/Eigenvalues>
@@ -43,7 +43,7 @@ class ProjectedDilatationForm final : public ElasticForm {
   struct ElementEnergy {
     double W = 0.0;
     ElementVector g = ElementVector::Zero();
-    ElementMatrix K = ElementMatrix::Zero();
+    ElementMatrix K;  // set only where the Hessian is asked for (a line search's energies need none)
   };
 
   // Active components of a 3×3 tensor.
@@ -289,7 +289,6 @@ class ProjectedDilatationForm final : public ElasticForm {
         if (split && !projected) out.W += law.volumetric(J[q]).U * p.dV;
         continue;
       }
-      const auto B = gradient_operator<E>(p);
       VecA stress = active(s->P);
       MatA tangent;
       if (want_hessian) tangent = active(s->A);
@@ -299,7 +298,11 @@ class ProjectedDilatationForm final : public ElasticForm {
         double dU;
         if (projected) {
           dU = p.phi.dot(pressure);
-          if (want_hessian) G.noalias() += p.phi * (p.dV * B.transpose() * dJ).transpose();
+          if (want_hessian) {
+            ElementVector BdJ = ElementVector::Zero();  // dV Bᵀ ∂J/∂F
+            add_Bt_times<E>(p, dJ, p.dV, BdJ);
+            G.noalias() += p.phi * BdJ.transpose();
+          }
         } else {  // pointwise U(J)
           const VolumetricResponse U = law.volumetric(J[q]);
           out.W += U.U * p.dV;
@@ -309,17 +312,15 @@ class ProjectedDilatationForm final : public ElasticForm {
         stress += dU * dJ;
         if (want_hessian) tangent += dU * jacobian_hessian(J[q], Finv);
       }
-      if (want_gradient) out.g.noalias() += p.dV * B.transpose() * stress;
+      if (want_gradient) add_Bt_times<E>(p, stress, p.dV, out.g);
       if (want_hessian) add_BtDB_upper<E>(p, MatA(p.dV * tangent), K_upper);
     }
-    if (want_hessian) {
-      out.K += K_upper + K_upper.transpose();  // its lower triangle is zero
-      out.K.diagonal() -= K_upper.diagonal();
-    }
-    if (projected && want_hessian) {
+    if (projected && want_hessian) {  // the volumetric term, symmetric: its upper triangle alone
       const auto PG = (projection_inverse_[e] * G).eval();
-      out.K.noalias() += PG.transpose() * D * PG;
+      const auto DPG = (D * PG).eval();
+      K_upper.template triangularView<Eigen::Upper>() += PG.transpose() * DPG;
     }
+    if (want_hessian) out.K = K_upper.template selfadjointView<Eigen::Upper>();
     if (!std::isfinite(out.W)) return FormStatus::inverted(e, "non-finite strain energy");
     return FormStatus::fine();
   }
