@@ -10,6 +10,8 @@
 // takes a config, with one that is not there.
 #include <CLI/CLI.hpp>
 
+#include "fem/core/allocator.hpp"
+
 #include <cmath>
 #include <optional>
 #include <string>
@@ -37,6 +39,10 @@ inline const CLI::Validator Positive(
 /// Reads the command line. Nothing: go on with the run; else main's exit code: 0 after --help,
 /// 2 after a bad option (CLI11's message printed). --help shows each option's default: the value
 /// bound before parsing, or the words an option gave with ->default_str("the config's").
+/// A run that goes on gets the process settings of softarm's own main (engine/main.cpp), so that
+/// a benchmark times what the program runs: without them each 3D Newton iteration's large arrays
+/// fault in afresh (fem/core/allocator.hpp), and the thesis 3CA took 43.7-47.5 s in bench_speed
+/// where `softarm simulate` took 34-36 s.
 inline std::optional<int> parse_or_exit(CLI::App& app, int argc, char** argv) {
   for (CLI::Option* option : app.get_options())
     if (option->get_type_size() != 0 && option->get_default_str().empty()) option->capture_default_str();
@@ -45,6 +51,7 @@ inline std::optional<int> parse_or_exit(CLI::App& app, int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
+  fem::keep_freed_memory_mapped();
   return std::nullopt;
 }
 
