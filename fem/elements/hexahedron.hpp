@@ -228,8 +228,8 @@ namespace detail {
 /// with (a0, a1, a2) = ∂N_a/∂X for r = 3a + i. Plain loops rather than Eigen, so that the compiler
 /// vectorises them for whichever instruction set the caller is compiled for: each entry is the
 /// same sum of the same products in the same order (no fused multiply-add, no reassociation), so
-/// the SSE2 and the AVX instance round alike, bit for bit (test "the element kernel's AVX and SSE2
-/// instances ...").
+/// the SSE2 and the AVX instance round alike, bit for bit (test "The hexahedra's BᵀDB kernel: its AVX
+/// and SSE2 instances round alike, and both are the dense product").
 template <int n>
 [[gnu::always_inline]] inline void add_BtDB_upper_loops(const double* dN /* n × 3, column-major */,
                                                          const double* D /* 9 × 9 */, double* K) {
@@ -252,12 +252,15 @@ template <int n>
   }
 }
 
+#if defined(__x86_64__) || defined(__i386__)
+#define SOFTARM_KERNEL_AVX 1
 /// The kernel for processors with AVX (four doubles an instruction, SSE2 two): the same loops.
 template <int n>
 [[gnu::target("avx")]] void add_BtDB_upper_avx(const double* dN, const double* D, double* K) {
   add_BtDB_upper_loops<n>(dN, D, K);
 }
-/// The kernel for any x86-64 processor (SSE2).
+#endif
+/// The kernel for any processor (on x86-64, SSE2).
 template <int n>
 void add_BtDB_upper_sse2(const double* dN, const double* D, double* K) {
   add_BtDB_upper_loops<n>(dN, D, K);
@@ -265,7 +268,7 @@ void add_BtDB_upper_sse2(const double* dN, const double* D, double* K) {
 
 /// Whether this processor runs AVX instructions (asked once).
 inline bool processor_has_avx() {
-#if defined(__x86_64__) || defined(__i386__)
+#ifdef SOFTARM_KERNEL_AVX
   static const bool has = [] {
     __builtin_cpu_init();
     return __builtin_cpu_supports("avx") != 0;
@@ -288,10 +291,10 @@ void add_BtDB_upper(const ReferencePoint<E>& p, const Eigen::Matrix<double, kAct
   static_assert(UpperMatrix::IsRowMajor, "add_BtDB_upper accumulates into a row-major matrix");
   static_assert(UpperMatrix::RowsAtCompileTime == 3 * E::kNodes && UpperMatrix::ColsAtCompileTime == 3 * E::kNodes,
                 "add_BtDB_upper accumulates into the element's fixed-size matrix");
-  if (detail::processor_has_avx())
-    detail::add_BtDB_upper_avx<E::kNodes>(p.dN_dX.data(), D.data(), K.data());
-  else
-    detail::add_BtDB_upper_sse2<E::kNodes>(p.dN_dX.data(), D.data(), K.data());
+#ifdef SOFTARM_KERNEL_AVX
+  if (detail::processor_has_avx()) return detail::add_BtDB_upper_avx<E::kNodes>(p.dN_dX.data(), D.data(), K.data());
+#endif
+  detail::add_BtDB_upper_sse2<E::kNodes>(p.dN_dX.data(), D.data(), K.data());
 }
 
 }  // namespace softarm::fem::hex
