@@ -41,8 +41,8 @@ inline const CLI::Validator Positive(
 /// bound before parsing, or the words an option gave with ->default_str("the config's").
 /// A run that goes on gets the process settings of softarm's own main (engine/main.cpp), so that
 /// a benchmark times what the program runs: without them each 3D Newton iteration's large arrays
-/// fault in afresh (fem/core/allocator.hpp), and the thesis 3CA took 43.7-47.5 s in bench_speed
-/// where `softarm simulate` took 34-36 s.
+/// fault in afresh (fem/core/allocator.hpp; docs/performance.md, The processes the tests and
+/// benchmarks run in).
 inline std::optional<int> parse_or_exit(CLI::App& app, int argc, char** argv) {
   for (CLI::Option* option : app.get_options())
     if (option->get_type_size() != 0 && option->get_default_str().empty()) option->capture_default_str();

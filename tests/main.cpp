@@ -1,9 +1,7 @@
 // The test binary's main: Catch2's session, in a process set up as softarm's own main sets it up
 // (engine/main.cpp), so that the tests run the solvers as the program runs them: without the
 // allocator's settings (fem/core/allocator.hpp) each 3D Newton iteration's large arrays fault in
-// afresh: "3CA: the half model reproduces the full model" took 32.2 s with 1.35 M minor page
-// faults, and takes 16.4 s with 0.11 M (docs/performance.md, The processes the tests and
-// benchmarks run in).
+// afresh (docs/performance.md, The processes the tests and benchmarks run in).
 #define CATCH_CONFIG_RUNNER
 #include <catch2/catch.hpp>
 
