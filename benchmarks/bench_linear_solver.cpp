@@ -2,12 +2,13 @@
 //
 // Builds box meshes of a slender body (60 × 30 × 160 mm by default, Hex27 / P1,
 // Dragon Skin 30 Ogden, the z = 0 face clamped), assembles the tangent at rest
-// and, for each solver configuration, prints dofs, nnz(K), nnz(L), the predicted
-// factor flops, the analysis time, the median factorisation time over --repeat
-// factorisations (wall and CPU time: CPU time is the robust figure on a shared
-// machine for a serial BLAS), the median solve time, the achieved GFlop/s, CHOLMOD's peak
-// memory and the peak RSS of the process that ran the configuration (each runs
-// in its own forked process so that its memory peak is its own). Also prints the
+// and, for each solver configuration (each in its own forked process, so that its memory peak is
+// its own), prints dofs, nnz(K), nnz(L), the predicted factor flops, the analysis time, the median
+// factorisation time over --repeat factorisations (wall and CPU time: CPU time is the robust figure
+// on a shared machine for a serial BLAS), the median solve time, the achieved GFlop/s, CHOLMOD's
+// peak memory, the peak RSS of the process, and the median time and iterations of CG to 1e-10
+// preconditioned with the factor: what a Newton step on an earlier factor costs per iteration, on
+// the factor's single-precision copy (super-double-cg: on the factor itself). Also prints the
 // median assembly time (EnergyProblem::evaluate with gradient + Hessian).
 //
 // The BLAS is whichever libblas.so.3 / liblapack.so.3 the loader finds: compare
@@ -88,6 +89,11 @@ std::vector<Config> all_configs() {
       {"super-upper", make(M::supernodal, O::cholmod_default, true, true)},
       {"auto-metis", make(M::automatic, O::metis)},
       {"auto-amd", make(M::automatic, O::amd)},
+      {"super-double-cg", [&] {
+         auto o = make(M::supernodal, O::cholmod_default);
+         o.single_precision_preconditioner = false;
+         return o;
+       }()},
       {"super-metis-relax", [&] {
          auto o = make(M::supernodal, O::metis);
          o.large_supernodes = true;
@@ -107,8 +113,9 @@ std::vector<std::string> split(const std::string& s, char sep) {
 /// Runs one configuration in the current (forked) process and prints its row.
 void run_config(const Config& c, const SparseMatrix& K, int repeat) {
   LinearSolver solver(c.options);
-  std::vector<double> factor, factor_cpu, solve;
-  double residual = 0.0;
+  std::vector<double> factor, factor_cpu, solve, cg;
+  double residual = 0.0, cg_residual = 0.0;
+  int cg_iterations = 0;
   const Eigen::VectorXd b = Eigen::VectorXd::Ones(K.rows());
   for (int k = 0; k < repeat; ++k) {
     const double f0 = solver.factorize_seconds, c0 = cpu_seconds();
@@ -122,12 +129,23 @@ void run_config(const Config& c, const SparseMatrix& K, int repeat) {
     const Eigen::VectorXd x = solver.solve(b);
     solve.push_back(now() - t0);
     residual = (K * x - b).norm() / b.norm();
+    // CG on the factor of K itself: what a Newton step solved on an earlier factor costs per
+    // iteration (a product with K and the preconditioner's two sweeps), here in 1-3 iterations.
+    Eigen::VectorXd d;
+    solver.solve_reusing_factor(K, b, 1e-10, d);  // once untimed: the preconditioner's copy is made at the first
+    const int before = solver.cg_iterations;
+    const double t1 = now();
+    solver.solve_reusing_factor(K, b, 1e-10, d);
+    cg.push_back(now() - t1);
+    cg_iterations = solver.cg_iterations - before;
+    cg_residual = (K * d - b).norm() / b.norm();
   }
   const double tf = bench::median(factor);
-  std::printf("  %-17s %-5s %8.2f %8.3f %8.3f %7.3f %7.3f %7.2f %7.3f %9.0f %9.0f  %.1e\n", c.name.c_str(),
+  std::printf("  %-17s %-5s %8.2f %8.3f %8.3f %7.3f %7.3f %7.2f %7.3f %9.0f %9.0f  %.1e  %7.4f %2d %.1e\n", c.name.c_str(),
               solver.supernodal ? "super" : "simpl", solver.factor_nonzeros / 1e6, solver.factor_flops / 1e9,
               solver.analyse_seconds, tf, bench::median(factor_cpu), solver.factor_flops / tf / 1e9, bench::median(solve),
-              solver.cholmod_peak_bytes / 1048576.0, peak_rss_MiB(), residual);
+              solver.cholmod_peak_bytes / 1048576.0, peak_rss_MiB(), residual, bench::median(cg), cg_iterations,
+              cg_residual);
   std::fflush(stdout);
 }
 
@@ -202,8 +220,9 @@ int main(int argc, char** argv) try {
       }
       std::printf("  assembly (median): gradient + Hessian %.3f s, gradient only %.3f s\n", bench::median(gh), bench::median(g));
     }
-    std::printf("  %-17s %-5s %8s %8s %8s %7s %7s %7s %7s %9s %9s  %s\n", "config", "L", "nnzL[M]", "GFlop",
-                "analyse", "factor", "cpu", "GFlop/s", "solve", "chol[MiB]", "RSS[MiB]", "residual");
+    std::printf("  %-17s %-5s %8s %8s %8s %7s %7s %7s %7s %9s %9s  %-7s  %7s %2s %s\n", "config", "L", "nnzL[M]",
+                "GFlop", "analyse", "factor", "cpu", "GFlop/s", "solve", "chol[MiB]", "RSS[MiB]", "residual", "cg", "it",
+                "cg_resid");
     std::fflush(stdout);
     for (const auto& c : chosen) {
       const pid_t pid = fork();

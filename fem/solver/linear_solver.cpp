@@ -129,6 +129,7 @@ bool LinearSolver::cholesky_factorize(Chol& c, const SparseMatrix& K) {
     supernodal = c.factor() && c.factor()->is_super;
   }
   const auto t0 = std::chrono::steady_clock::now();
+  single_current_ = false;
   c.factorize(K);
   factorize_seconds += seconds_since(t0);
   cholmod_peak_bytes = static_cast<double>(c.cholmod().memory_usage);
@@ -219,6 +220,20 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) {
   return x;
 }
 
+Eigen::VectorXd LinearSolver::precondition(const Eigen::VectorXd& r) {
+  if (!options_.single_precision_preconditioner) return solve(r);
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!single_current_) {
+    const cholmod_factor* L = options_.upper ? cholesky_upper_.factor() : cholesky_.factor();
+    if (!L || !single_.assign(*L)) single_.clear();
+    single_current_ = true;
+  }
+  if (single_.empty()) return solve(r);
+  Eigen::VectorXd z = single_.solve(r);
+  solve_seconds += seconds_since(t0);
+  return z;
+}
+
 bool LinearSolver::solve_reusing_factor(const SparseMatrix& K, const Eigen::VectorXd& b, double tolerance,
                                         Eigen::VectorXd& d) {
   const int budget = options_.reuse_cg_iterations > 0 ? options_.reuse_cg_iterations : reuse_cg_budget();
@@ -229,8 +244,8 @@ bool LinearSolver::solve_reusing_factor(const SparseMatrix& K, const Eigen::Vect
 bool LinearSolver::solve_reusing_factor(const LinearOperator& apply, const Eigen::VectorXd& b, double tolerance,
                                         int max_iterations, Eigen::VectorXd& d) {
   if (status_ != Status::positive_definite || shifted_) return false;
-  const CgResult cg =
-      preconditioned_cg(apply, b, [this](const Eigen::VectorXd& r) { return solve(r); }, tolerance, max_iterations, d);
+  const CgResult cg = preconditioned_cg(apply, b, [this](const Eigen::VectorXd& r) { return precondition(r); },
+                                        tolerance, max_iterations, d);
   cg_iterations += cg.iterations;
   if (cg.converged) ++reused_solves;
   return cg.converged;

@@ -20,6 +20,7 @@
 
 #include "fem/sparse/sparse_pattern.hpp"
 #include "fem/solver/preconditioned_cg.hpp"
+#include "fem/solver/single_precision_factor.hpp"
 
 namespace softarm::fem {
 
@@ -44,6 +45,9 @@ class LinearSolver {
     /// CG iterations solve_reusing_factor may spend; 0: as many as cost half a factorisation
     /// (reuse_cg_budget, from CHOLMOD's flop count: the same on every run).
     int reuse_cg_iterations = 0;
+    /// CG on an earlier factor preconditions with that factor copied to single precision
+    /// (single_precision_factor.hpp) where it is supernodal; false: with the double factor.
+    bool single_precision_preconditioner = true;
   };
 
   LinearSolver() : LinearSolver(Options{}) {}
@@ -91,6 +95,9 @@ class LinearSolver {
   bool cholesky_factorize(Chol& c, const SparseMatrix& K);
   bool cholesky_with_shift(const SparseMatrix& K, double shift);
   bool plain_cholesky(const SparseMatrix& K);  // counts the factorisation, clears any shift
+  /// CG's preconditioner: the factor's single-precision copy where Options and the factor allow it
+  /// (made at the first CG after each factorisation), else the factor itself.
+  Eigen::VectorXd precondition(const Eigen::VectorXd& r);
 
   template <int UpLo>
   struct Cholesky : Eigen::CholmodDecomposition<SparseMatrix, UpLo> {
@@ -108,6 +115,8 @@ class LinearSolver {
   bool cholesky_analysed_ = false, lu_analysed_ = false;
   Status status_ = Status::singular;
   bool shifted_ = false;  // the Cholesky factor is of K + σI
+  SinglePrecisionFactor single_;
+  bool single_current_ = false;  // single_ is the current factor's copy (or the factor has none)
   static constexpr double kMinShift = 1e-6, kMaxShift = 1e2;  // σ / mean |diagonal|
   double last_shift_fraction_ = kMinShift * 10;  // s of the last accepted shift
 };
