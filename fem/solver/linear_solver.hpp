@@ -77,6 +77,9 @@ class LinearSolver {
   /// CG iterations that cost about half a factorisation: from the analysis' flop count and
   /// nnz(L), with the measured ratio of the two kinds of flop (linear_solver.cpp).
   int reuse_cg_budget() const;
+  /// CG's sweeps read the factor's single-precision copy (Options::single_precision_preconditioner,
+  /// a supernodal factor): each takes about half the time of one with the factor itself.
+  bool single_precision_sweeps() const { return supernodal && options_.single_precision_preconditioner; }
 
   // Timings of the last call, seconds (for benchmarks).
   double analyse_seconds = 0.0, factorize_seconds = 0.0, solve_seconds = 0.0;

@@ -30,7 +30,7 @@ struct AugmentedSolves {
   bool prepared = false;
   LinearSolver factor;   // Cholesky of the tangent at the start
   double alpha = 0;      // 100 / ∇VᵀK₀⁻¹∇V: outlier eigenvalue ~100 of the preconditioned operator
-  int budget = 0;        // CG iterations per solve: 3 × the reuse budget, about an LU's cost for both
+  int budget = 0;        // CG iterations per solve: about an LU's cost for both (prepare)
 
   /// From the tangent K₀ and ∇V at the starting equilibrium (the first iteration of the first
   /// volume step, so K₀ is assembled once), or at a later iterate where CG failed and K₀ factorised
@@ -42,7 +42,10 @@ struct AugmentedSolves {
     const double compliance = g.dot(factor.solve(g));
     if (!(compliance > 0) || !std::isfinite(compliance)) return;
     alpha = 100 / compliance;
-    budget = 3 * factor.reuse_cg_budget();
+    // About an LU's cost for both solves: three times the iterations that cost half a Cholesky
+    // factorisation, twice as many where the sweeps read the factor's single-precision copy (each at
+    // half the time). The thesis 3CA's free end cell: its 3 LUs gone (docs/performance.md).
+    budget = (factor.single_precision_sweeps() ? 6 : 3) * factor.reuse_cg_budget();
   }
   bool solve(const SparseMatrix& K, const Vector& g, const Vector& rhs, double tolerance, Vector& d) {
     if (!(alpha > 0)) return false;
