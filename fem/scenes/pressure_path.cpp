@@ -342,13 +342,20 @@ struct PathContext {
   const PressureStateCallback& on_state;
 };
 
+/// The tangent K at a converged state for on_state, with CG on the path's factor.
+ConvergedTangent converged_tangent(const PathContext& c, const SparseMatrix& K) {
+  return {&K, [&solver = c.solver, &K](const Vector& b, double tolerance, Vector& d) {
+            return solver.solve_reusing_factor(K, b, tolerance, d);
+          }};
+}
+
 /// An earlier run's states, handed on as they came; returns where the path goes on from the last
 /// of them (x, the loads and the solver's factor set there).
 PathStart resume_from(const PathContext& c, const std::vector<PathLogRecord>& resumed, Vector& x,
                       PressurePathResult& out) {
   for (const PathLogRecord& r : resumed) {
     out.history.push_back(r.state);
-    if (c.on_state) c.on_state(r.state, r.x, nullptr);
+    if (c.on_state) c.on_state(r.state, r.x, {});
   }
   const PathLogRecord& last = resumed.back();
   x = last.x;
@@ -402,7 +409,7 @@ void record_rest_state(const PathContext& c, const Vector& x, std::optional<Path
   const PressureState s0{0.0, c.chamber.volume(x), pv_stiffness(c.problem, c.chamber, c.solver, x, c.spec.newton, nullptr),
                          c.solver.status() == LinearSolver::Status::positive_definite, 0, true};
   out.history.push_back(s0);
-  if (c.on_state) c.on_state(s0, x, &e0.hessian);
+  if (c.on_state) c.on_state(s0, x, converged_tangent(c, e0.hessian));
   if (log) log->append({0.0, c.spec.steps.initial_increment, s0, out.path.stats, x});
 }
 
@@ -448,7 +455,7 @@ void follow_pressure(const PathContext& c, Vector& x, const PathStart& start, st
                     pv_stiffness(c.problem, c.chamber, c.solver, xs, c.spec.newton, &report.last.hessian),
                     report.tangent_positive_definite, report.iterations, is_output};
     out.history.push_back(s);
-    if (c.on_state) c.on_state(s, xs, &report.last.hessian);
+    if (c.on_state) c.on_state(s, xs, converged_tangent(c, report.last.hessian));
     converged = {level, &xs};
     recent.emplace_back(level, xs);
     if (recent.size() > 3) recent.erase(recent.begin());
@@ -630,7 +637,7 @@ bool settled_by_volume_control(const PathContext& c, Vector& x, const Vector& x_
                   " % of its initial value) and chamber-volume control carried the path on to the requested "
                   "pressure without a maximum (" + vc.message + ")";
   out.history.push_back(s);
-  if (c.on_state) c.on_state(s, x, &landing.last.hessian);
+  if (c.on_state) c.on_state(s, x, converged_tangent(c, landing.last.hessian));
   return true;
 }
 }  // namespace

@@ -186,11 +186,22 @@ struct PressurePathSpec {
   PathCheckpoint checkpoint;
 };
 
-/// A converged state as the path hands it on: the state, its positions and the tangent at those
-/// positions under the same loads where the path has just assembled it (Newton's last evaluation:
-/// the rest state's, a converged step's, volume control's landing), else nullptr (a state resumed
-/// from the log): a caller that needs the tangent there need not assemble it again.
-using PressureStateCallback = std::function<void(const PressureState&, const Vector&, const SparseMatrix* tangent)>;
+/// The tangent K at a converged state as the path hands it on, where the path has just assembled it
+/// (Newton's last evaluation: the rest state's, a converged step's, volume control's landing; empty
+/// for a state resumed from the log): a caller that needs K there need not assemble it again, nor
+/// factorise it to solve with it. The path has just solved with K for dp/dV (pv_stiffness), so its
+/// solver holds K's own factor or one on which CG solved with K to 10⁻¹⁰: CG on that factor solves
+/// with K in a few sweeps where a factorisation of K costs dozens. Both valid during the call only.
+struct ConvergedTangent {
+  const SparseMatrix* matrix = nullptr;
+  /// K d = b to ‖K d − b‖ ≤ tolerance·‖b‖ by CG on the path's factor (LinearSolver::solve_reusing_factor);
+  /// false where the path holds no Cholesky factor of K's pattern, or CG meets non-positive curvature
+  /// or does not converge within its budget: the caller then factorises K itself. Empty where matrix is.
+  std::function<bool(const Vector& b, double tolerance, Vector& d)> solve_on_path_factor;
+};
+
+/// A converged state as the path hands it on: the state, its positions and the tangent there.
+using PressureStateCallback = std::function<void(const PressureState&, const Vector&, const ConvergedTangent& tangent)>;
 
 /// Ramps the pressures of `chambers` (entries of load.chamber_pressure_MPa) from 0
 /// together; calls `on_state` for every converged step. With `spec.checkpoint`, every

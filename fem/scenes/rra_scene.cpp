@@ -116,7 +116,7 @@ RraResult run_rra_scene(const RraSceneSpec& spec, const RraProgress& progress) {
   const auto t_solve = Clock::now();
   PressurePathSpec path = spec.path;
   path.node_dimension = 2;  // (r, z)
-  out.path = run_pressure_path(problem, {chamber.get()}, load, x, path, [&](const PressureState& s, const Vector& xs, const SparseMatrix*) {
+  out.path = run_pressure_path(problem, {chamber.get()}, load, x, path, [&](const PressureState& s, const Vector& xs, const ConvergedTangent&) {
     if (!s.is_output) return;
     out.curve.push_back(curve_point(s, mesh, *elastic, xs, free_node, sign, spec.peak_averaging_radius_mm));
     out.curve_positions.push_back(xs);

@@ -93,7 +93,7 @@ SplResult run_spl_scene(const SplSceneSpec& spec, const std::function<void(const
     return SplState{s.pressure_kPa / path.max_pressure_kPa, tip.position_mm, tip.tilt_deg, s.newton_iterations, {}};
   };
   PressureState last;
-  out.path = run_pressure_path(problem, chambers.loaded, load, x, path, [&](const PressureState& s, const Vector& xs, const SparseMatrix*) {
+  out.path = run_pressure_path(problem, chambers.loaded, load, x, path, [&](const PressureState& s, const Vector& xs, const ConvergedTangent&) {
     last = s;
     if (!s.is_output) return;
     out.curve.push_back(state_of(s, xs));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -23,6 +24,19 @@ namespace softarm::fem {
 namespace {
 /// The output states a rod's table takes: those with a positive definite tangent.
 bool is_table_row(const TcaCellState& s) { return s.is_output && s.bending_compliance_per_Nmm2 > 0; }
+
+/// K⁻¹u for each u by CG on the path's factor (ConvergedTangent), to 10⁻¹⁰ as the path's own dp/dV:
+/// false where any fails (no such factor, non-positive curvature, the budget), and the caller
+/// factorises K. The path has just solved with K, so this costs a few sweeps for each u where a
+/// factorisation of K costs dozens.
+bool solved_on_path_factor(const ConvergedTangent& tangent, std::initializer_list<const Eigen::VectorXd*> u,
+                           std::initializer_list<Eigen::VectorXd*> k_inverse_u) {
+  if (!tangent.solve_on_path_factor) return false;
+  auto out = k_inverse_u.begin();
+  for (const Eigen::VectorXd* b : u)
+    if (!tangent.solve_on_path_factor(*b, 1e-10, **out++)) return false;
+  return true;
+}
 
 /// The half or full model the cell is solved on: the mirror plane from the pressures and the end
 /// moment (gravity has no part here); a moment keeps the plane only if it turns about its normal.
@@ -143,12 +157,9 @@ class CellFaceReader {
   /// towards d lowers the plane along d). dφ = uᵀK⁻¹u·share·dM, κ = φ/L; dλ = uᵀK⁻¹u·share·dN/L.
   /// In a half model d lies in the mirror plane and c is fixed. Left at zero where the tangent is
   /// not positive definite. `tangent`: K at xs where the path has it (assembled here where not).
-  void add_compliance(TcaCellState& c, const Vector& xs, const SparseMatrix* tangent, double& seconds) {
+  void add_compliance(TcaCellState& c, const Vector& xs, const ConvergedTangent& tangent, double& seconds) {
     const AddElapsedSeconds timer(seconds);  // every return below counts
     const EnergyProblem& problem = *cell_.problem;
-    Evaluation assembled;
-    if (!tangent) tangent = &(assembled = problem.evaluate(xs, false, true)).hessian;
-    if (solver_.factorize(*tangent) != LinearSolver::Status::positive_definite) return;
     const auto unit = [&](int component) {
       Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.num_dofs());
       u[3 * cell_.pilot + component] = 1;
@@ -156,12 +167,19 @@ class CellFaceReader {
       return u;
     };
     const Eigen::VectorXd ua = unit(0), ub = unit(1), uc = unit(2);
-    const Eigen::VectorXd kb = solver_.solve(ub), kc = solver_.solve(uc);
+    Eigen::VectorXd ka, kb, kc;
+    if (!solved_on_path_factor(tangent, {&ua, &ub, &uc}, {&ka, &kb, &kc})) {
+      Evaluation assembled;
+      const SparseMatrix* K = tangent.matrix;
+      if (!K) K = &(assembled = problem.evaluate(xs, false, true)).hessian;
+      if (solver_.factorize(*K) != LinearSolver::Status::positive_definite) return;
+      ka = solver_.solve(ua), kb = solver_.solve(ub), kc = solver_.solve(uc);
+    }
     Eigen::Matrix2d g;  // the plane's (b, c) under unit (F_b, F_c)
     g << ub.dot(kb), ub.dot(kc), uc.dot(kb), uc.dot(kc);
     const double share = cell_.share;
     c.bending_compliance_per_Nmm2 = d_.dot(g * d_) * share / L_;
-    c.axial_compliance_per_N = ua.dot(solver_.solve(ua)) * share / L_;
+    c.axial_compliance_per_N = ua.dot(ka) * share / L_;
     Eigen::Matrix2d k = T_ * g * T_.transpose() * share / L_;  // d(κx, κy)/d(Mx, My), solver frame
     if (half_) k(0, 0) = k(1, 1);  // about the mirror plane's normal only: isotropic (header)
     c.bending_compliance_matrix_per_Nmm2 = to_user_ * k * to_user_.transpose();
@@ -198,7 +216,7 @@ void run_end_loads_only(const TcaSceneSpec& spec, CellProblem& cell, CellFaceRea
   out.states.push_back(face.state(0.0, 0.0, x));
   out.states.back().newton_iterations = out.path.path.stats.newton_iterations;
   out.states.back().is_output = true;
-  if (out.path.path.completed) face.add_compliance(out.states.back(), x, nullptr, out.compliance_s);
+  if (out.path.path.completed) face.add_compliance(out.states.back(), x, {}, out.compliance_s);
 }
 }  // namespace
 
@@ -223,7 +241,7 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
   } else {
     const PressurePathSpec path = tca_pressure_path(spec, cell.chambers, cell.end_loaded, 0);
     out.path = run_pressure_path(*cell.problem, cell.chambers.loaded, cell.load, x, path,
-                                 [&](const PressureState& s, const Vector& xs, const SparseMatrix* tangent) {
+                                 [&](const PressureState& s, const Vector& xs, const ConvergedTangent& tangent) {
                                    out.states.push_back(face.state(s.pressure_kPa, s.chamber_volume_mm3, xs));
                                    out.states.back().newton_iterations = s.newton_iterations;
                                    out.states.back().is_output = s.is_output;
@@ -279,23 +297,27 @@ std::vector<CellTorsionState> cell_torsion_along_ramp(const TcaSceneSpec& spec, 
   // GJ = L / (dφ/dT) from the tangent at a state: φ's response to a unit torque (NaN where the tangent
   // is not positive definite).
   LinearSolver solver;  // one symbolic analysis for every state
-  const auto stiffness_at = [&](const Vector& x, const SparseMatrix* tangent) {
-    Evaluation assembled;
-    if (!tangent) tangent = &(assembled = problem.evaluate(x, false, true)).hessian;
-    if (solver.factorize(*tangent) != LinearSolver::Status::positive_definite) return std::nan("");
-    Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.num_dofs());
+  const auto stiffness_at = [&](const Vector& x, const ConvergedTangent& tangent) {
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.num_dofs()), ku;
     u[3 * twist_pilot + 2] = 1;
     problem.zero_prescribed(u);
-    return spec.design.actuator.pitch() / u.dot(solver.solve(u));
+    if (!solved_on_path_factor(tangent, {&u}, {&ku})) {
+      Evaluation assembled;
+      const SparseMatrix* K = tangent.matrix;
+      if (!K) K = &(assembled = problem.evaluate(x, false, true)).hessian;
+      if (solver.factorize(*K) != LinearSolver::Status::positive_definite) return std::nan("");
+      ku = solver.solve(u);
+    }
+    return spec.design.actuator.pitch() / u.dot(ku);
   };
   std::vector<CellTorsionState> out;
   Vector x = X;
   if (chambers.loaded.empty()) {
-    out.push_back({0.0, stiffness_at(x, nullptr)});
+    out.push_back({0.0, stiffness_at(x, {})});
     return out;
   }
   run_pressure_path(problem, chambers.loaded, load, x, tca_pressure_path(full, chambers, false, 0),
-                    [&](const PressureState& p, const Vector& xs, const SparseMatrix* tangent) {
+                    [&](const PressureState& p, const Vector& xs, const ConvergedTangent& tangent) {
                       if (p.is_output) out.push_back({p.pressure_kPa, stiffness_at(xs, tangent)});
                     });
   return out;

@@ -145,7 +145,7 @@ TcaEndCellResult run_tca_end_cell(const TcaSceneSpec& spec, TcaEnd end, int ring
   if (chambers.loaded.empty()) {
     rest_only(out, faces, x);
   } else {  // the ramp records the rest state first
-    const auto record = [&](const PressureState& p, const Vector& xs, const SparseMatrix*) {
+    const auto record = [&](const PressureState& p, const Vector& xs, const ConvergedTangent&) {
       out.states.push_back(faces.state(p.pressure_kPa, xs));
       out.states.back().newton_iterations = p.newton_iterations;
       out.states.back().is_output = p.is_output;

@@ -141,7 +141,7 @@ TcaResult run_tca_scene(const TcaSceneSpec& spec, const TcaProgress& progress) {
   path.checkpoint = spec.checkpoint;
   Vector x = problem.reference_positions();
   const auto t_solve = Clock::now();
-  out.path = run_pressure_path(problem, chambers.loaded, load, x, path, [&](const PressureState& s, const Vector& xs, const SparseMatrix*) {
+  out.path = run_pressure_path(problem, chambers.loaded, load, x, path, [&](const PressureState& s, const Vector& xs, const ConvergedTangent&) {
     out.states.push_back(state_of(s, xs));
     if (!s.is_output) return;
     out.curve.push_back(out.states.back());
