@@ -25,16 +25,27 @@ namespace {
 /// The output states a rod's table takes: those with a positive definite tangent.
 bool is_table_row(const TcaCellState& s) { return s.is_output && s.bending_compliance_per_Nmm2 > 0; }
 
-/// K⁻¹u for each u by CG on the path's factor (ConvergedTangent), to 10⁻¹⁰ as the path's own dp/dV:
-/// false where any fails (no such factor, non-positive curvature, the budget), and the caller
-/// factorises K. The path has just solved with K, so this costs a few sweeps for each u where a
-/// factorisation of K costs dozens.
-bool solved_on_path_factor(const ConvergedTangent& tangent, std::initializer_list<const Eigen::VectorXd*> u,
-                           std::initializer_list<Eigen::VectorXd*> k_inverse_u) {
-  if (!tangent.solve_on_path_factor) return false;
+/// K⁻¹u for each u, K the tangent at xs: by CG on the path's factor (ConvergedTangent) to 10⁻¹⁰, as
+/// the path's own dp/dV, else from K's own factorisation in `solver` (K assembled where the path has
+/// not handed it on); false where K is not positive definite. The path has just solved with K, so CG
+/// costs a few sweeps for each u where a factorisation of K costs dozens.
+bool solve_with_tangent(const EnergyProblem& problem, const Vector& xs, const ConvergedTangent& tangent,
+                        LinearSolver& solver, std::initializer_list<const Eigen::VectorXd*> u,
+                        std::initializer_list<Eigen::VectorXd*> k_inverse_u) {
+  const auto by_cg = [&] {
+    if (!tangent.solve_on_path_factor) return false;
+    auto out = k_inverse_u.begin();
+    for (const Eigen::VectorXd* b : u)
+      if (!tangent.solve_on_path_factor(*b, 1e-10, **out++)) return false;
+    return true;
+  };
+  if (by_cg()) return true;
+  Evaluation assembled;
+  const SparseMatrix* K = tangent.matrix;
+  if (!K) K = &(assembled = problem.evaluate(xs, false, true)).hessian;
+  if (solver.factorize(*K) != LinearSolver::Status::positive_definite) return false;
   auto out = k_inverse_u.begin();
-  for (const Eigen::VectorXd* b : u)
-    if (!tangent.solve_on_path_factor(*b, 1e-10, **out++)) return false;
+  for (const Eigen::VectorXd* b : u) **out++ = solver.solve(*b);
   return true;
 }
 
@@ -168,13 +179,7 @@ class CellFaceReader {
     };
     const Eigen::VectorXd ua = unit(0), ub = unit(1), uc = unit(2);
     Eigen::VectorXd ka, kb, kc;
-    if (!solved_on_path_factor(tangent, {&ua, &ub, &uc}, {&ka, &kb, &kc})) {
-      Evaluation assembled;
-      const SparseMatrix* K = tangent.matrix;
-      if (!K) K = &(assembled = problem.evaluate(xs, false, true)).hessian;
-      if (solver_.factorize(*K) != LinearSolver::Status::positive_definite) return;
-      ka = solver_.solve(ua), kb = solver_.solve(ub), kc = solver_.solve(uc);
-    }
+    if (!solve_with_tangent(problem, xs, tangent, solver_, {&ua, &ub, &uc}, {&ka, &kb, &kc})) return;
     Eigen::Matrix2d g;  // the plane's (b, c) under unit (F_b, F_c)
     g << ub.dot(kb), ub.dot(kc), uc.dot(kb), uc.dot(kc);
     const double share = cell_.share;
@@ -301,13 +306,7 @@ std::vector<CellTorsionState> cell_torsion_along_ramp(const TcaSceneSpec& spec, 
     Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.num_dofs()), ku;
     u[3 * twist_pilot + 2] = 1;
     problem.zero_prescribed(u);
-    if (!solved_on_path_factor(tangent, {&u}, {&ku})) {
-      Evaluation assembled;
-      const SparseMatrix* K = tangent.matrix;
-      if (!K) K = &(assembled = problem.evaluate(x, false, true)).hessian;
-      if (solver.factorize(*K) != LinearSolver::Status::positive_definite) return std::nan("");
-      ku = solver.solve(u);
-    }
+    if (!solve_with_tangent(problem, x, tangent, solver, {&u}, {&ku})) return std::nan("");
     return spec.design.actuator.pitch() / u.dot(ku);
   };
   std::vector<CellTorsionState> out;
