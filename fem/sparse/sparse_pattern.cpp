@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 namespace softarm::fem {
 
@@ -14,42 +15,56 @@ int SparsePattern::declare_block(std::span<const int> dofs) {
 }
 
 void SparsePattern::finalize() {
-  // Column structure: the sorted set of rows coupled to each column.
-  std::vector<std::vector<int>> columns(num_dofs_);
-  for (std::size_t b = 0; b < block_sizes_.size(); ++b) {
-    const int* d = block_dofs_.data() + block_offsets_[b];
+  // Column by column: the rows a column couples to are the dofs of the blocks it is in, each kept
+  // once (a stamp per row, not a sort of every block's copy), then sorted; the position of each
+  // block entry is read off a row → position table of its column, written once per column. Work
+  // and memory O(Σ block size² + nnz), no search per entry.
+  const std::size_t blocks = block_sizes_.size();
+  // Incidence: for each dof, the (block, index within the block) pairs it appears as.
+  std::vector<int> first(num_dofs_ + 1, 0);
+  for (int d : block_dofs_) ++first[d + 1];
+  for (int c = 0; c < num_dofs_; ++c) first[c + 1] += first[c];
+  std::vector<int> fill(first.begin(), first.end() - 1);
+  std::vector<std::pair<int, int>> incidence(block_dofs_.size());
+  for (std::size_t b = 0; b < blocks; ++b)
     for (int j = 0; j < block_sizes_[b]; ++j)
-      for (int i = 0; i < block_sizes_[b]; ++i) columns[d[j]].push_back(d[i]);
-  }
-  for (int c = 0; c < num_dofs_; ++c) columns[c].push_back(c);  // keep every diagonal (constrained dofs)
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (int c = 0; c < num_dofs_; ++c) {
-    auto& col = columns[c];
-    std::sort(col.begin(), col.end());
-    col.erase(std::unique(col.begin(), col.end()), col.end());
-    for (int r : col) triplets.emplace_back(r, c, 0.0);
-  }
-  matrix_.resize(num_dofs_, num_dofs_);
-  matrix_.setFromTriplets(triplets.begin(), triplets.end());
-  matrix_.makeCompressed();
+      incidence[fill[block_dofs_[block_offsets_[b] + j]]++] = {static_cast<int>(b), j};
 
-  const int* outer = matrix_.outerIndexPtr();
-  const int* inner = matrix_.innerIndexPtr();
-  position_offsets_.clear();
-  positions_.clear();
-  for (std::size_t b = 0; b < block_sizes_.size(); ++b) {
-    position_offsets_.push_back(positions_.size());
-    const int* d = block_dofs_.data() + block_offsets_[b];
-    const int n = block_sizes_[b];
-    for (int j = 0; j < n; ++j) {
-      const int* begin = inner + outer[d[j]];
-      const int* end = inner + outer[d[j] + 1];
-      for (int i = 0; i < n; ++i) {
-        const int* it = std::lower_bound(begin, end, d[i]);
-        positions_.push_back(static_cast<int>(it - inner));
-      }
+  position_offsets_.assign(blocks, 0);
+  std::size_t total = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    position_offsets_[b] = total;
+    total += static_cast<std::size_t>(block_sizes_[b]) * block_sizes_[b];
+  }
+  positions_.assign(total, 0);
+
+  std::vector<int> outer(num_dofs_ + 1, 0), inner, stamp(num_dofs_, -1), where(num_dofs_, 0);
+  for (int c = 0; c < num_dofs_; ++c) {
+    const std::size_t column_start = inner.size();
+    stamp[c] = c, inner.push_back(c);  // every diagonal is kept (constrained dofs)
+    for (int k = first[c]; k < first[c + 1]; ++k) {
+      const int b = incidence[k].first;
+      const int* d = block_dofs_.data() + block_offsets_[b];
+      for (int i = 0; i < block_sizes_[b]; ++i)
+        if (stamp[d[i]] != c) stamp[d[i]] = c, inner.push_back(d[i]);
+    }
+    std::sort(inner.begin() + static_cast<std::ptrdiff_t>(column_start), inner.end());
+    for (std::size_t k = column_start; k < inner.size(); ++k) where[inner[k]] = static_cast<int>(k);
+    outer[c + 1] = static_cast<int>(inner.size());
+    // Block b's entry (i, j) is column d[j], row d[i]: stored at (j·n + i), column-major.
+    for (int k = first[c]; k < first[c + 1]; ++k) {
+      const auto [b, j] = incidence[k];
+      const int n = block_sizes_[b];
+      const int* d = block_dofs_.data() + block_offsets_[b];
+      int* pos = positions_.data() + position_offsets_[b] + static_cast<std::size_t>(j) * n;
+      for (int i = 0; i < n; ++i) pos[i] = where[d[i]];
     }
   }
+  matrix_.resize(num_dofs_, num_dofs_);  // compressed, empty
+  matrix_.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+  std::copy(outer.begin(), outer.end(), matrix_.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), matrix_.innerIndexPtr());
+  std::fill_n(matrix_.valuePtr(), inner.size(), 0.0);
   finalized_ = true;
 }
 
