@@ -265,8 +265,9 @@ int main(int argc, char** argv) try {
       ->check(CLI::IsMember({"strict", "loose", "ccx", "ccx-tight", "strict-refactor", "loose-refactor"}));
   if (const auto code = bench::parse_or_exit(app, argc, argv)) return *code;
   set_thread_count(threads);
-  NewtonSettings strict, relaxed;
-  strict.reuse_factor = relaxed.reuse_factor = true;  // the 3D scenes' default
+  // softarm's 3D default (tca_scene.hpp): factor reuse, a shifted Cholesky where the tangent is
+  // indefinite (no LU), stiff parts rotated exactly.
+  NewtonSettings strict = TcaSceneSpec{}.newton, relaxed = strict;
   relaxed.residual_tolerance = loose;
   relaxed.update_tolerance = 1e-2;
   NewtonSettings strict_refactor = strict, relaxed_refactor = relaxed;  // after the tolerances
