@@ -51,6 +51,7 @@ inline std::optional<int> parse_or_exit(CLI::App& app, int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
+  fem::restart_with_huge_pages(argv);
   fem::keep_freed_memory_mapped();
   return std::nullopt;
 }
