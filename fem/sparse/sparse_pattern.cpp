@@ -38,7 +38,9 @@ void SparsePattern::finalize() {
   }
   positions_.assign(total, 0);
 
-  std::vector<int> outer(num_dofs_ + 1, 0), inner, stamp(num_dofs_, -1), where(num_dofs_, 0);
+  matrix_.resize(num_dofs_, num_dofs_);  // compressed, empty: its column starts are written below
+  int* outer = matrix_.outerIndexPtr();
+  std::vector<int> inner, stamp(num_dofs_, -1), where(num_dofs_, 0);
   for (int c = 0; c < num_dofs_; ++c) {
     const std::size_t column_start = inner.size();
     stamp[c] = c, inner.push_back(c);  // every diagonal is kept (constrained dofs)
@@ -60,9 +62,7 @@ void SparsePattern::finalize() {
       for (int i = 0; i < n; ++i) pos[i] = where[d[i]];
     }
   }
-  matrix_.resize(num_dofs_, num_dofs_);  // compressed, empty
   matrix_.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
-  std::copy(outer.begin(), outer.end(), matrix_.outerIndexPtr());
   std::copy(inner.begin(), inner.end(), matrix_.innerIndexPtr());
   std::fill_n(matrix_.valuePtr(), inner.size(), 0.0);
   finalized_ = true;
