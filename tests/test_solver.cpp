@@ -553,3 +553,44 @@ TEST_CASE("two solvers factorising side by side give the bits each gives alone (
   }
   set_thread_count(saved);
 }
+
+TEST_CASE("CHOLMOD factorises from either triangle of K: the same solution to rounding, shifted or not", "[solver]") {
+  // Options::Triangle hands CHOLMOD the triangle it transposes once (upper: supernodal, lower:
+  // simplicial). Both reach the numeric factorisation as the same triangle of PKPᵀ, though its
+  // entries may come in another order within a column (the simplicial sweep then sums in another
+  // order): the same factor to rounding, whichever triangle, automatic choice included.
+  SparseMatrix K = grid_laplacian_3d(14);
+  for (int j = 0; j < K.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(K, j); it; ++it)
+      if (it.row() != it.col()) {
+        const int lo = std::min<int>(it.row(), it.col()), hi = std::max<int>(it.row(), it.col());
+        it.valueRef() *= 1.0 + 0.1 * std::sin(0.37 * lo + 0.11 * hi);  // distinct values, still symmetric
+      }
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(K.rows(), 1.0, 2.0);
+  using Options = LinearSolver::Options;
+  for (const auto mode : {Options::Mode::simplicial, Options::Mode::supernodal}) {
+    std::vector<Eigen::VectorXd> plain, shifted;
+    for (const auto triangle : {Options::Triangle::lower, Options::Triangle::upper, Options::Triangle::automatic}) {
+      Options options;
+      options.mode = mode;
+      options.triangle = triangle;
+      LinearSolver solver(options);
+      REQUIRE(solver.factorize(K) == LinearSolver::Status::positive_definite);
+      plain.push_back(solver.solve(b));
+      CHECK((K * plain.back() - b).norm() <= 1e-10 * b.norm());
+      SparseMatrix indefinite = K;
+      indefinite.diagonal().array() -= 6.5;  // a few negative eigenvalues: factorize_shifted's ladder
+      REQUIRE(solver.factorize_shifted(indefinite) == LinearSolver::Status::indefinite);
+      shifted.push_back(solver.solve(b));
+      SparseMatrix with_shift = indefinite;
+      with_shift.diagonal().array() += solver.last_shift;
+      CHECK((with_shift * shifted.back() - b).norm() <= 1e-8 * b.norm());
+    }
+    CAPTURE(mode == Options::Mode::supernodal);
+    for (std::size_t i = 1; i < plain.size(); ++i) {
+      CAPTURE(i);
+      CHECK((plain[i] - plain[0]).norm() <= 1e-13 * plain[0].norm());
+      CHECK((shifted[i] - shifted[0]).norm() <= 1e-13 * shifted[0].norm());
+    }
+  }
+}

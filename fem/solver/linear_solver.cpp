@@ -69,20 +69,21 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 //    saves 3.5 % of the flops for a 5.4 s analysis instead of 1.0 s: not worth it.
 //  - postorder on (off: 4.6 s vs 3.0 s). Relaxed amalgamation nrelax {8, 32, 96}:
 //    no gain (61k: 2.97 vs 3.17 s, 109k: 7.76 vs 7.13 s, serial OpenBLAS, 2 pinned cores).
-//  - lower triangle: passing the upper one saves 11 % of CHOLMOD's memory (396 vs 448 MiB
-//    at 61k dofs, 790 vs 885 MiB at 109k) but is 1.2-1.3x slower with threaded OpenBLAS
-//    (61k: 1.93 vs 1.58 s; 109k: 5.48 vs 4.29 s).
+//  - the triangle (Options::Triangle): the supernodal factorisation reads tril(PKPᵀ), one
+//    permuted transposition of K's upper triangle, two of its lower one; the simplicial one
+//    reads triu(PKPᵀ), the other way round. Measured (configs super, super-lower, serial
+//    OpenBLAS, alternating runs, medians of 5): 19,683 dofs 0.121-0.123 s from the upper
+//    triangle against 0.132-0.134 s from the lower, 61,347 dofs 0.772-0.776 against
+//    0.806-0.810 s, and CHOLMOD's memory 92 against 108 MiB, 396 against 448 MiB. (An
+//    earlier, threaded measurement found the upper one slower; it did not repeat.)
 // What matters is the BLAS behind libblas.so.3/liblapack.so.3 (scripts/setup.sh installs
 // libopenblas0-pthread): at 61k dofs reference BLAS 36.8 s, OpenBLAS serial 3.0 s (this
 // 2-core machine, loaded); on 2 pinned cores of an idle Xeon, serial vs pthread OpenBLAS:
 // 19,683 dofs 0.63 vs 0.29 s, 61,347 dofs 3.17 vs 1.58 s, 156,927 dofs 19.9 vs 11.9 s.
-LinearSolver::LinearSolver(const Options& options) : options_(options) {
-  configure(cholesky_);
-  configure(cholesky_upper_);
-}
+LinearSolver::LinearSolver(const Options& options) : options_(options) { configure(); }
 
-template <class Chol>
-void LinearSolver::configure(Chol& c) const {
+void LinearSolver::configure() {
+  Cholesky& c = cholesky_;
   using Mode = Options::Mode;
   c.setMode(options_.mode == Mode::automatic    ? Eigen::CholmodAuto
             : options_.mode == Mode::simplicial ? Eigen::CholmodSimplicialLLt
@@ -107,8 +108,26 @@ void LinearSolver::configure(Chol& c) const {
   }
 }
 
-template <class Chol>
-bool LinearSolver::cholesky_factorize(Chol& c, const SparseMatrix& K) {
+// As Eigen's CholmodBase::factorize, with the triangle chosen per call: CHOLMOD's analysis
+// orders the pattern of K + Kᵀ whichever triangle it was given, so one analysis serves both.
+void LinearSolver::Cholesky::factorize_from(const SparseMatrix& K, bool upper) {
+  eigen_assert(this->m_analysisIsOk && "analyzePattern first");
+  cholmod_sparse A = upper ? Eigen::viewAsCholmod(K.selfadjointView<Eigen::Upper>())
+                           : Eigen::viewAsCholmod(K.selfadjointView<Eigen::Lower>());
+  cholmod_factorize_p(&A, this->m_shiftOffset, nullptr, 0, this->m_cholmodFactor, &this->cholmod());
+  // On success CHOLMOD's minor is n; on failure the column where the factorisation stopped.
+  this->m_info = this->m_cholmodFactor->minor == this->m_cholmodFactor->n ? Eigen::Success : Eigen::NumericalIssue;
+  this->m_factorizationIsOk = true;
+}
+
+bool LinearSolver::upper_triangle() const {
+  using Triangle = Options::Triangle;
+  if (options_.triangle != Triangle::automatic) return options_.triangle == Triangle::upper;
+  return supernodal;
+}
+
+bool LinearSolver::cholesky_factorize(const SparseMatrix& K) {
+  Cholesky& c = cholesky_;
   if (!cholesky_analysed_) {
     const auto t0 = std::chrono::steady_clock::now();
     {
@@ -130,7 +149,7 @@ bool LinearSolver::cholesky_factorize(Chol& c, const SparseMatrix& K) {
   }
   const auto t0 = std::chrono::steady_clock::now();
   single_current_ = false;
-  c.factorize(K);
+  c.factorize_from(K, upper_triangle());
   factorize_seconds += seconds_since(t0);
   cholmod_peak_bytes = static_cast<double>(c.cholmod().memory_usage);
   return c.info() == Eigen::Success;
@@ -138,12 +157,8 @@ bool LinearSolver::cholesky_factorize(Chol& c, const SparseMatrix& K) {
 
 bool LinearSolver::cholesky_with_shift(const SparseMatrix& K, double shift) {
   // CHOLMOD factorises K + shift·I (its beta); Eigen keeps the shift for later calls.
-  if (options_.upper) {
-    cholesky_upper_.setShift(shift);
-    return cholesky_factorize(cholesky_upper_, K);
-  }
   cholesky_.setShift(shift);
-  return cholesky_factorize(cholesky_, K);
+  return cholesky_factorize(K);
 }
 
 bool LinearSolver::plain_cholesky(const SparseMatrix& K) {
@@ -213,7 +228,7 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) {
   // numeric object): the answer is "no solution", NaN, for the caller to diagnose.
   if (status_ == Status::singular) return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
   if (status_ == Status::positive_definite || shifted_)
-    x = options_.upper ? Eigen::VectorXd(cholesky_upper_.solve(b)) : Eigen::VectorXd(cholesky_.solve(b));
+    x = cholesky_.solve(b);
   else
     x = lu_.solve(b);
   solve_seconds += seconds_since(t0);
@@ -224,7 +239,7 @@ Eigen::VectorXd LinearSolver::precondition(const Eigen::VectorXd& r) {
   if (!options_.single_precision_preconditioner) return solve(r);
   const auto t0 = std::chrono::steady_clock::now();
   if (!single_current_) {
-    const cholmod_factor* L = options_.upper ? cholesky_upper_.factor() : cholesky_.factor();
+    const cholmod_factor* L = cholesky_.factor();
     if (!L || !single_.assign(*L)) single_.clear();
     single_current_ = true;
   }

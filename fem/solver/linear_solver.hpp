@@ -39,7 +39,12 @@ class LinearSolver {
     Mode mode = Mode::automatic;
     Ordering ordering = Ordering::cholmod_default;
     bool postorder = true;
-    bool upper = false;  // give CHOLMOD the upper (true) or lower (false) triangle
+    /// The triangle of K handed to CHOLMOD. It copies K permuted into the triangle its factorisation
+    /// reads: one transposition from the lower triangle for the simplicial LLᵀ, from the upper one for the
+    /// supernodal (two from the other). Same factor either way. automatic: the one-transposition triangle
+    /// for the factor CHOLMOD chose (linear_solver.cpp).
+    enum class Triangle { automatic, lower, upper };
+    Triangle triangle = Triangle::automatic;
     double supernodal_switch = 40.0;  // CHOLMOD's flops/nnz(L) threshold for automatic mode
     bool large_supernodes = false;    // relaxed amalgamation nrelax {8, 32, 96}, zrelax {0.8, 0.2, 0.1}
     /// CG iterations solve_reusing_factor may spend; 0: as many as cost half a factorisation
@@ -92,23 +97,22 @@ class LinearSolver {
   bool supernodal = false;
 
  private:
-  template <class Chol>
-  void configure(Chol& c) const;
-  template <class Chol>
-  bool cholesky_factorize(Chol& c, const SparseMatrix& K);
+  void configure();
+  bool cholesky_factorize(const SparseMatrix& K);
   bool cholesky_with_shift(const SparseMatrix& K, double shift);
   bool plain_cholesky(const SparseMatrix& K);  // counts the factorisation, clears any shift
   /// CG's preconditioner: the factor's single-precision copy where Options and the factor allow it
   /// (made at the first CG after each factorisation), else the factor itself.
   Eigen::VectorXd precondition(const Eigen::VectorXd& r);
 
-  template <int UpLo>
-  struct Cholesky : Eigen::CholmodDecomposition<SparseMatrix, UpLo> {
+  /// Eigen's CHOLMOD wrapper (analysed on K's lower triangle) that also factorises from the upper one.
+  struct Cholesky : Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> {
     const cholmod_factor* factor() const { return this->m_cholmodFactor; }
+    void factorize_from(const SparseMatrix& K, bool upper);
   };
+  bool upper_triangle() const;  // the triangle cholesky_factorize hands CHOLMOD (Options::Triangle)
   Options options_;
-  Cholesky<Eigen::Lower> cholesky_;
-  Cholesky<Eigen::Upper> cholesky_upper_;
+  Cholesky cholesky_;
   Eigen::UmfPackLU<SparseMatrix> lu_;
   // UMFPACK's solve reads the factorised matrix again (iterative refinement), and Eigen's
   // UmfPackLU keeps only a reference to it; the caller's tangent is gone by the time the
