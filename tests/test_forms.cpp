@@ -5,6 +5,8 @@
 // and h = 1e-6 mm, truncation is ~1e-12 relative and round-off ~1e-16/1e-6 ·
 // (|Π|/|g|) ≈ 1e-9…1e-8 relative, so 1e-6 leaves two orders of margin while
 // any wrong term (a missing geometric stiffness, a sign) shows as O(1).
+#include <algorithm>
+
 #include <catch2/catch.hpp>
 
 #include "fem/forms/chamber_pressure_form.hpp"
@@ -57,6 +59,37 @@ TEST_CASE("axisymmetric elastic form: gradient and Hessian match finite differen
       CHECK(err.gradient < 1e-6);
       CHECK(err.hessian < 1e-6);
     }
+}
+
+TEST_CASE("The Hessian is the identity at prescribed dofs, and a moved Evaluation hands it over uncopied", "[forms]") {
+  auto patch = make_patch({test::form_cases().front().material}, test::form_cases().front().treatment, 0.01, 2);
+  const EnergyProblem& problem = *patch->problem;
+  const Vector x = test::perturbed(problem.reference_positions(), 0.2);
+  Evaluation e = problem.evaluate(x, true, true);
+  REQUIRE(e.status.ok);
+  const auto& prescribed = problem.is_prescribed();
+  REQUIRE(std::count(prescribed.begin(), prescribed.end(), 1) > 0);
+  int free_couplings = 0;
+  for (int c = 0; c < e.hessian.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(e.hessian, c); it; ++it) {
+      const int r = static_cast<int>(it.row());
+      if (prescribed[c] || prescribed[r]) CHECK(it.value() == (r == c ? 1.0 : 0.0));
+      else free_couplings += it.value() != 0.0;
+    }
+  CHECK(free_couplings > 0);
+
+  // Eigen 3.4's SparseMatrix cannot move; Evaluation's moves swap it (energy_problem.hpp).
+  const double* values = e.hessian.valuePtr();
+  const SparseMatrix copy = e.hessian;
+  Evaluation moved(std::move(e));
+  CHECK(moved.hessian.valuePtr() == values);
+  Evaluation assigned;
+  assigned = std::move(moved);
+  CHECK(assigned.hessian.valuePtr() == values);
+  CHECK((assigned.hessian - copy).norm() == 0.0);
+  const Evaluation copied = assigned;  // a copy stays a copy
+  CHECK(copied.hessian.valuePtr() != values);
+  CHECK((copied.hessian - copy).norm() == 0.0);
 }
 
 TEST_CASE("chamber pressure form: exact volume, gradient and load stiffness", "[forms]") {

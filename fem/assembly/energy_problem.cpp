@@ -20,11 +20,27 @@ EnergyProblem::EnergyProblem(Vector reference_positions, DirichletConstraints co
   }
 }
 
+Evaluation& Evaluation::operator=(Evaluation&& other) noexcept {
+  energy = other.energy;
+  gradient = std::move(other.gradient);
+  hessian.swap(other.hessian);
+  load_norm = other.load_norm;
+  reaction_norm = other.reaction_norm;
+  status = std::move(other.status);
+  return *this;
+}
+
 void EnergyProblem::add_form(std::shared_ptr<Form> form) { forms_.push_back(std::move(form)); }
 
 void EnergyProblem::finalize() {
   for (auto& f : forms_) f->declare_pattern(pattern_);
   pattern_.finalize();
+  const SparseMatrix& K = pattern_.zero_matrix();
+  const int* outer = K.outerIndexPtr();
+  const int* inner = K.innerIndexPtr();
+  for (int c = 0; c < K.outerSize(); ++c)
+    for (int k = outer[c]; k < outer[c + 1]; ++k)
+      if (prescribed_[c] || prescribed_[inner[k]]) (inner[k] == c ? prescribed_diagonal_ : prescribed_off_diagonal_).push_back(k);
 }
 
 void EnergyProblem::apply_constraints(Vector& x, double scale) const {
@@ -73,12 +89,9 @@ Evaluation EnergyProblem::evaluate(const Vector& x, bool want_gradient, bool wan
   if (want_hessian) {
     acc->finish(out.hessian);
     // Identity rows and columns for prescribed dofs (keeps symmetry and pattern).
-    const int* outer = out.hessian.outerIndexPtr();
-    const int* inner = out.hessian.innerIndexPtr();
     double* values = out.hessian.valuePtr();
-    for (int c = 0; c < n; ++c)
-      for (int k = outer[c]; k < outer[c + 1]; ++k)
-        if (prescribed_[c] || prescribed_[inner[k]]) values[k] = (inner[k] == c) ? 1.0 : 0.0;
+    for (const int k : prescribed_diagonal_) values[k] = 1.0;
+    for (const int k : prescribed_off_diagonal_) values[k] = 0.0;
   }
   return out;
 }

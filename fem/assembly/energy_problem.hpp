@@ -26,6 +26,15 @@ struct DirichletConstraints {
 };
 
 struct Evaluation {
+  // Eigen 3.4's SparseMatrix has no move constructor or move assignment: moving an Evaluation
+  // member by member copied the Hessian (3D cells: tens of MB, three copies a Newton iteration).
+  // These moves swap it instead; copies stay copies.
+  Evaluation() = default;
+  Evaluation(const Evaluation&) = default;
+  Evaluation& operator=(const Evaluation&) = default;
+  Evaluation(Evaluation&& other) noexcept { *this = std::move(other); }
+  Evaluation& operator=(Evaluation&& other) noexcept;
+
   double energy = 0.0;
   Vector gradient;         // zero at prescribed dofs
   SparseMatrix hessian;    // identity rows/columns at prescribed dofs
@@ -71,6 +80,9 @@ class EnergyProblem {
   Vector X_;
   DirichletConstraints constraints_;
   std::vector<char> prescribed_;
+  // The Hessian's entries in a prescribed dof's row or column (identity there), found once by
+  // finalize(): the diagonal ones, set to 1, and the others, set to 0.
+  std::vector<int> prescribed_diagonal_, prescribed_off_diagonal_;
   std::vector<std::shared_ptr<Form>> forms_;
   SparsePattern pattern_;
   StiffInclusions inclusions_;

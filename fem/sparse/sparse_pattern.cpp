@@ -93,7 +93,7 @@ void HessianAccumulator::finish(SparseMatrix& out) {
     for (std::size_t k = 0; k < nnz; ++k) v[k] += buf[k];
   buffers_.clear();
   values_.clear();
-  out = std::move(result_);
+  out.swap(result_);  // not operator=: Eigen 3.4's SparseMatrix has no move assignment, it would copy
 }
 
 }  // namespace softarm::fem
