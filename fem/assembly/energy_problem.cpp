@@ -40,7 +40,8 @@ void EnergyProblem::finalize() {
   const int* inner = K.innerIndexPtr();
   for (int c = 0; c < K.outerSize(); ++c)
     for (int k = outer[c]; k < outer[c + 1]; ++k)
-      if (prescribed_[c] || prescribed_[inner[k]]) (inner[k] == c ? prescribed_diagonal_ : prescribed_off_diagonal_).push_back(k);
+      if (prescribed_[c] || prescribed_[inner[k]])
+        (inner[k] == c ? prescribed_diagonal_ : prescribed_off_diagonal_).push_back(k);
 }
 
 void EnergyProblem::apply_constraints(Vector& x, double scale) const {

@@ -41,8 +41,9 @@ class LinearSolver {
     bool postorder = true;
     /// The triangle of K handed to CHOLMOD. It copies K permuted into the triangle its factorisation
     /// reads: one transposition from the lower triangle for the simplicial LLᵀ, from the upper one for the
-    /// supernodal (two from the other). Same factor either way. automatic: the one-transposition triangle
-    /// for the factor CHOLMOD chose (linear_solver.cpp).
+    /// supernodal (two from the other). The same factor to rounding (K is symmetric to rounding, and the
+    /// entries of a column may come in another order). automatic: the one-transposition triangle for the
+    /// factor CHOLMOD chose (linear_solver.cpp).
     enum class Triangle { automatic, lower, upper };
     Triangle triangle = Triangle::automatic;
     double supernodal_switch = 40.0;  // CHOLMOD's flops/nnz(L) threshold for automatic mode
