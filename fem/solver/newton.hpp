@@ -50,8 +50,8 @@ struct NewtonSettings {
   // seconds, a solve with it a tenth of that. The 3D scenes' default.
   bool reuse_factor = false;
   // Give up (Failure::unstable_branch) once this many iterations on an indefinite tangent
-  // failed to halve the best residual so far, with no positive definite tangent between;
-  // 0: never. At a stable equilibrium the tangent is positive definite; a run of indefinite
+  // failed to halve the best residual so far, with no iteration between that halved it (a positive
+  // definite one that did not leaves the count as it is); 0: never. At a stable equilibrium the tangent is positive definite; a run of indefinite
   // ones that makes no progress means the iterates are on no stable branch, as past a limit
   // point, where the step would otherwise spend all max_iterations (the thesis 3CA near its
   // 316 kPa maximum: 4 failed steps × 2 attempts × 20 iterations, three quarters of the run).
