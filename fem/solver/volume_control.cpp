@@ -31,6 +31,7 @@ struct AugmentedSolves {
   LinearSolver factor;   // Cholesky of the tangent at the start
   double alpha = 0;      // 100 / ∇VᵀK₀⁻¹∇V: outlier eigenvalue ~100 of the preconditioned operator
   int budget = 0;        // CG iterations per solve: about an LU's cost for both (prepare)
+  int last_iterations = 0;  // of the last iteration's two solves (the convergence table shows them)
 
   /// From the tangent K₀ and ∇V at the starting equilibrium (the first iteration of the first
   /// volume step, so K₀ is assembled once), or at a later iterate where CG failed and K₀ factorised
@@ -50,7 +51,10 @@ struct AugmentedSolves {
   bool solve(const SparseMatrix& K, const Vector& g, const Vector& rhs, double tolerance, Vector& d) {
     if (!(alpha > 0)) return false;
     const LinearOperator apply = [&](const Vector& p) { return Vector(K * p + (alpha * g.dot(p)) * g); };
-    return factor.solve_reusing_factor(apply, rhs, tolerance, budget, d);
+    const int before = factor.cg_iterations;
+    const bool solved = factor.solve_reusing_factor(apply, rhs, tolerance, budget, d);
+    last_iterations += factor.cg_iterations - before;
+    return solved;
   }
 };
 
@@ -91,7 +95,10 @@ bool solve_constrained(const EnergyProblem& problem, Vector& x, double& level, L
     if (s.verbose)
       std::cout << "    " << it << "  " << number_text(relative, 3) << "  " << number_text(std::abs(constraint / target), 3)
                 << "  " << fmt(lt) << "  "
-                << (it == 0 ? "" : by_cg ? "CG (augmented)" : positive_definite ? "SPD" : "indefinite") << "\n";
+                << (it == 0 ? std::string()
+                    : by_cg ? "CG (augmented) " + std::to_string(aug.last_iterations)
+                            : std::string(positive_definite ? "SPD" : "indefinite"))
+                << "\n";
     // Converged: the residual within its tolerance, or on its round-off floor as Newton's (within 100
     // times the tolerance, no longer halving, the update settled): a ballooning Dragon Skin 10 RRA
     // with a 0.45 mm cap sat at 5e-8 for ten iterations with the volume exact, and every volume step
@@ -123,6 +130,7 @@ bool solve_constrained(const EnergyProblem& problem, Vector& x, double& level, L
     // 1e-6, which keeps the convergence quadratic near the solution.
     const double forcing = std::clamp(1e-2 * relative, 1e-12, 1e-6);
     if (aug.wanted && !aug.prepared) aug.prepare(e.hessian, g);
+    aug.last_iterations = 0;
     by_cg = aug.solve(e.hessian, g, Vector(-e.gradient - (aug.alpha * constraint) * g), forcing, a) &&
             aug.solve(e.hessian, g, Vector(P * g), forcing, b);
     if (by_cg) {
