@@ -49,17 +49,17 @@ struct NewtonSettings {
   // steps of a smooth path, the tangent changes little; a 3D factorisation costs
   // seconds, a solve with it a tenth of that. The 3D scenes' default.
   bool reuse_factor = false;
-  // Give up (Failure::unstable_branch) once this many iterations on an indefinite tangent
-  // failed to halve the best residual so far, with no iteration between that halved it (a positive
-  // definite one that did not leaves the count as it is); 0: never. At a stable equilibrium the tangent is positive definite; a run of indefinite
-  // ones that makes no progress means the iterates are on no stable branch, as past a limit
-  // point, where the step would otherwise spend all max_iterations (the thesis 3CA near its
-  // 316 kPa maximum: 4 failed steps × 2 attempts × 20 iterations, three quarters of the run).
-  // Shifted steps that still halve the best residual go on (the thesis 3CA's step to 241 kPa,
-  // given up at 4.3e-4, now converges; on the SPL pose past half its pressures such tries slow
-  // down short of convergence and are given up a few iterations later). With the guard on, an
-  // equilibrium reached on an indefinite tangent (a maximum: shifted steps leave alone a negative
-  // mode that the residual has no part in) is unstable_branch too. The 3D scenes use 4.
+  // Give up (Failure::unstable_branch) once this many iterations on an indefinite tangent failed to
+  // halve the best residual so far, with no iteration between that halved it (a positive definite
+  // one that did not leaves the count as it is); 0: never. At a stable equilibrium the tangent is
+  // positive definite; a run of indefinite ones that makes no progress means the iterates are on no
+  // stable branch, as past a limit point, where the step would otherwise spend all max_iterations
+  // (the thesis 3CA near its 316 kPa maximum: 4 failed steps × 2 attempts × 20 iterations, three
+  // quarters of the run). Shifted steps that still halve the best residual go on (the thesis 3CA's
+  // step to 241 kPa, given up at 4.3e-4, now converges; on the SPL pose past half its pressures
+  // such tries slow down short of convergence and are given up a few iterations later). With the
+  // guard on, an equilibrium reached on an indefinite tangent (a maximum: shifted steps leave alone
+  // a negative mode that the residual has no part in) is unstable_branch too. The 3D scenes use 4.
   int max_indefinite_iterations = 0;
   // Stiff parts (the ABS rings and connectors) rotate exactly under the update instead of
   // being stretched by its linearisation (fem/assembly/stiff_inclusions.hpp). Newton itself
