@@ -18,6 +18,7 @@
 #include "fem/solver/load_stepper.hpp"
 #include "fem/solver/lowest_modes.hpp"
 #include "fem/solver/preconditioned_cg.hpp"
+#include "fem/solver/unstable_branch_count.hpp"
 #include "support/test_problems.hpp"
 
 using namespace softarm;
@@ -235,6 +236,24 @@ TEST_CASE("Newton goes on through indefinite tangents while it halves the residu
   CHECK(top.failure == Failure::unstable_branch);
   CHECK(longest_indefinite_run(top) > 5);
   CHECK(std::abs(s_end) < 1e-9 * s_w);
+}
+
+TEST_CASE("the unstable-branch count: only an iteration that halves the best residual clears it", "[solver]") {
+  // The thesis 3CA's free end past its limit point: indefinite iterations stalled, one positive
+  // definite iteration that threw the residual up, more indefinite ones. The guard (4) must give up
+  // at the fifth indefinite iteration without progress, the positive definite one notwithstanding.
+  int count = indefinite_without_progress_after(0, false, true, false);  // the first iteration, indefinite
+  CHECK(count == 1);
+  count = indefinite_without_progress_after(count, false, false, true);  // indefinite, halved the best
+  CHECK(count == 1);
+  for (int k = 0; k < 3; ++k) count = indefinite_without_progress_after(count, false, false, false);
+  CHECK(count == 4);
+  count = indefinite_without_progress_after(count, true, false, false);  // positive definite, no progress
+  CHECK(count == 4);
+  count = indefinite_without_progress_after(count, false, false, false);
+  CHECK(count == 5);  // > 4: unstable_branch
+  CHECK(indefinite_without_progress_after(5, true, false, true) == 0);  // positive definite and halved: cleared
+  CHECK(indefinite_without_progress_after(3, true, true, false) == 0);  // a positive definite first iteration
 }
 
 TEST_CASE("load stepper lands exactly on the requested levels", "[solver]") {

@@ -6,6 +6,8 @@
 #include <limits>
 #include <sstream>
 
+#include "fem/solver/unstable_branch_count.hpp"
+
 namespace softarm::fem {
 namespace {
 std::string scientific(double v) {
@@ -177,15 +179,10 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
     // 4.8e-4, 4.3e-4 on indefinite tangents was given up; it now turns positive definite and
     // converges in 10). Against the best rather than the last residual, so that a residual jumping
     // up and back down (past the 3CA's limit point: 3.3e-3, 0.88, 5.2e-2, ...) counts as what it is,
-    // no progress. A positive definite iteration clears the count only where it makes progress too:
-    // past the thesis 3CA's limit point a shifted run stalled at 3.6e-3, one positive definite
-    // iteration threw the residual to 0.41, and four more indefinite ones followed before the step
-    // was given up (13 iterations, each a factorisation and its failed tries; now 10).
-    if (report.tangent_positive_definite) {
-      if (it == 0 || new_best) h.indefinite_without_progress = 0;
-    } else if (it == 0 || !new_best) {
-      ++h.indefinite_without_progress;
-    }
+    // no progress. A positive definite iteration clears the count only where it makes progress too
+    // (unstable_branch_count.hpp).
+    h.indefinite_without_progress =
+        indefinite_without_progress_after(h.indefinite_without_progress, report.tangent_positive_definite, it == 0, new_best);
     if (settings.max_indefinite_iterations > 0 && h.indefinite_without_progress > settings.max_indefinite_iterations) {
       report.failure = Failure::unstable_branch;
       report.message = "the tangent was indefinite in " + std::to_string(h.indefinite_without_progress) +
