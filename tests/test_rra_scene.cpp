@@ -351,6 +351,19 @@ TEST_CASE("handed to volume control ahead of its maximum, or once a step past it
         Approx(at_stall.path.estimated_limit_pressure_kPa).epsilon(2e-4));
   CHECK(after_failure.path.path.stats.newton_iterations < at_stall.path.path.stats.newton_iterations);
   CHECK(after_failure.path.factorizations < at_stall.path.factorizations);
+  // Volume control's first step from a hand-over, over the last pressure step's volume: a quarter (a
+  // whole step lands past the top too far to place it). The hand-over after a failure tells the two
+  // apart (with a whole first step this check failed); ahead, the whole step is retraced in quarters from
+  // the same state, so both give 0.25. (At the stall the first step tried is whole; here it fails and
+  // is halved, so the state reached says nothing of it.)
+  const auto first_step_share = [](const PressurePathResult& p) {
+    REQUIRE(p.history.size() >= 2);
+    REQUIRE_FALSE(p.beyond_limit.empty());
+    const double last = p.history.back().chamber_volume_mm3;
+    return (p.beyond_limit.front().chamber_volume_mm3 - last) / (last - p.history[p.history.size() - 2].chamber_volume_mm3);
+  };
+  CHECK(first_step_share(ahead.path) == Approx(0.25).epsilon(1e-6));
+  CHECK(first_step_share(after_failure.path) == Approx(0.25).epsilon(1e-6));
 }
 
 TEST_CASE("where volume control finds no maximum ahead, pressure control goes on as without the hand-over", "[rra][limit]") {
