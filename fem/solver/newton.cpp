@@ -181,8 +181,8 @@ NewtonReport solve_newton(const EnergyProblem& problem, Vector& x, LinearSolver&
     // up and back down (past the 3CA's limit point: 3.3e-3, 0.88, 5.2e-2, ...) counts as what it is,
     // no progress. A positive definite iteration clears the count only where it makes progress too
     // (unstable_branch_count.hpp).
-    h.indefinite_without_progress =
-        indefinite_without_progress_after(h.indefinite_without_progress, report.tangent_positive_definite, it == 0, new_best);
+    h.indefinite_without_progress = indefinite_without_progress_after(
+        h.indefinite_without_progress, report.tangent_positive_definite, it == 0, new_best);
     if (settings.max_indefinite_iterations > 0 && h.indefinite_without_progress > settings.max_indefinite_iterations) {
       report.failure = Failure::unstable_branch;
       report.message = "the tangent was indefinite in " + std::to_string(h.indefinite_without_progress) +
