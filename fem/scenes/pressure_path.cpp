@@ -34,16 +34,17 @@ struct LoadedVolume {
   }
 };
 
-// dp/dV = 1/(∇Vᵀ K⁻¹ ∇V), using the solver's last factorisation of the tangent (that of
-// Newton's last iterate). Where Newton reuses factors (NewtonSettings::reuse_factor) the last
-// one may be several states old: then K⁻¹∇V is solved with K, the tangent at x, by CG on
-// that factor, or, where CG fails, from K's own factorisation.
+// dp/dV = 1/(∇Vᵀ K⁻¹ ∇V) with K the tangent at x. The solver's last factorisation is at best
+// that of the iterate before x (1e-5 of the displacement away where Newton stops on its
+// contraction), and where Newton reuses factors (NewtonSettings::reuse_factor) several states
+// old: K⁻¹∇V is solved with K by CG on that factor, or, where CG fails, from K's own
+// factorisation. Without K (tangent_at_x null) the last factorisation serves as it is.
 double pv_stiffness(const EnergyProblem& problem, const LoadedVolume& chamber, LinearSolver& solver,
                     const Vector& x, const NewtonSettings& newton, const SparseMatrix* tangent_at_x) {
   Vector g = chamber.gradient(x);
   problem.zero_prescribed(g);
   Vector compliance;
-  if (!newton.reuse_factor || !tangent_at_x) {
+  if (!tangent_at_x) {
     compliance = solver.solve(g);
   } else if (!solver.solve_reusing_factor(*tangent_at_x, g, 1e-10, compliance)) {
     factorize_tangent(solver, *tangent_at_x, newton);
