@@ -18,6 +18,7 @@
 #include "fem/solver/load_stepper.hpp"
 #include "fem/solver/lowest_modes.hpp"
 #include "fem/solver/preconditioned_cg.hpp"
+#include "fem/solver/remaining_error.hpp"
 #include "fem/solver/unstable_branch_count.hpp"
 #include "support/test_problems.hpp"
 
@@ -87,13 +88,13 @@ struct Compression {
   static Mesh grid() { return rectangle_mesh(0.0, 1.0, 0.0, 1.0, 4, 4, 0.0); }
   Mesh mesh = grid();
   std::unique_ptr<EnergyProblem> problem;
-  explicit Compression(double final_height, std::shared_ptr<Form> extra = nullptr) {
+  explicit Compression(double final_height, std::shared_ptr<Form> extra = nullptr, double bulk_modulus = 50.0) {
     DirichletConstraints c;
     for (int n : mesh.node_sets.at("axis")) c.fix(2 * n);
     for (int n : mesh.node_sets.at("bottom")) c.fix(2 * n + 1);
     for (int n : mesh.node_sets.at("top")) c.fix(2 * n + 1, final_height - 1.0);
     problem = std::make_unique<EnergyProblem>(flattened_positions(mesh), c);
-    problem->add_form(make_elastic_form(mesh, {test::neo_hookean(1.0, 50.0)}));
+    problem->add_form(make_elastic_form(mesh, {test::neo_hookean(1.0, bulk_modulus)}));
     if (extra) problem->add_form(extra);
     problem->finalize();
   }
@@ -612,4 +613,45 @@ TEST_CASE("CHOLMOD factorises from either triangle of K: the same solution to ro
       CHECK((shifted[i] - shifted[0]).norm() <= 1e-13 * shifted[0].norm());
     }
   }
+}
+
+TEST_CASE("Newton stops where its last two steps' contraction bounds the error left by the update tolerance",
+          "[solver]") {
+  // The bound (remaining_error.hpp) on its own: θ/(1−θ)·‖δ_k‖ for θ = ‖δ_k‖/‖δ_{k−1}‖ up to ½, none past.
+  CHECK(remaining_error_bound(1.0, 0.5) == Approx(0.5));
+  CHECK(remaining_error_bound(7.155e-4, 1.135e-5) == Approx(1.135e-5 * 1.135e-5 / (7.155e-4 - 1.135e-5)));
+  CHECK(std::isinf(remaining_error_bound(1.0, 0.6)));
+  CHECK(std::isinf(remaining_error_bound(0.0, 0.0)));
+  // The cylinder squashed in steps of 2 % of its height, each Newton solve from the last state: those
+  // that converged where the residual met its tolerance and the last two steps bounded the error
+  // left by the update tolerance, one iteration before the update itself fell below it, are as close
+  // to equilibrium as the bound says (against the same step solved to round-off).
+  Compression c(0.8, nullptr, 200.0);  // ν = 0.4975: residual and update fall at different rates
+  Vector x = c.problem->reference_positions();
+  LinearSolver solver;
+  const NewtonSettings newton;
+  NewtonSettings strict;
+  strict.residual_tolerance = 1e-14;
+  strict.update_tolerance = 1e-13;
+  int stopped_by_bound = 0;
+  for (int step = 1; step <= 10; ++step) {
+    c.problem->apply_constraints(x, 0.1 * step);
+    Vector tight = x;
+    const NewtonReport report = solve_newton(*c.problem, x, solver, newton);
+    REQUIRE(report.converged);
+    REQUIRE(report.rows.size() >= 2);
+    const NewtonRow &last = report.rows.back(), &before = report.rows[report.rows.size() - 2];
+    CAPTURE(step, report.iterations, before.update, last.update);
+    if (last.update <= newton.update_tolerance) continue;
+    ++stopped_by_bound;
+    const double bound = remaining_error_bound(before.update, last.update);
+    CHECK(bound <= newton.update_tolerance);
+    LinearSolver solver2;
+    REQUIRE(solve_newton(*c.problem, tight, solver2, strict).converged);
+    const double displacement = (tight - c.problem->reference_positions()).norm();
+    // Measured: errors of 4e-11 to 1.2e-8 of the displacement, against bounds of 3e-9 to 8e-7.
+    CHECK((x - tight).norm() <= bound * displacement);
+    x = tight;
+  }
+  CHECK(stopped_by_bound >= 3);
 }

@@ -2,8 +2,9 @@
 // Newton–Raphson on the total potential energy with a backtracking line
 // search. Convergence (deal.II step-44 style): the residual normalised by the
 // larger of the first iteration's residual and the load's force scale, AND
-// either the update normalised by the displacement or the energy norm |δx·r|
-// normalised by its first value; or, when the residual sits on its round-off
+// either the update normalised by the displacement, or the error that the last
+// two full steps' contraction leaves at most (remaining_error.hpp), within the
+// update tolerance, or the energy norm |δx·r| normalised by its first value; or, when the residual sits on its round-off
 // floor, update and energy norm both below tolerance, or the update below
 // tolerance and the residual no longer falling, within 100× its tolerance, or beyond the floor that
 // rounding the positions leaves by no more (residual_beyond_roundoff). One row per iteration is kept for the
@@ -31,7 +32,7 @@ struct NewtonSettings {
   // Newton converges quadratically, so once an update is 1e-6 of the
   // displacement the remaining error is ~1e-12 (deal.II step-44 uses the same
   // 1e-6 for the update, with 1e-9 on the residual).
-  double update_tolerance = 1e-6;     // ‖δx‖ / max(‖x − X‖, 1e-3 mm)
+  double update_tolerance = 1e-6;     // ‖δx‖ / max(‖x − X‖, 1e-3 mm), or the remaining-error bound
   double energy_tolerance = 1e-12;    // |δx·r| / |δx₀·r₀|
   int max_line_search = 12;
   double divergence_factor = 1e6;     // ‖r‖ > factor · scale → diverged
