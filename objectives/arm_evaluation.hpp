@@ -51,6 +51,7 @@ struct EvaluationSettings {
   int rod_nodes_per_segment = 17;
   bool ring_confinement = false;        // the rod's 3CA sections: rings hold the tube wall (fem/reduced/confined_wall.hpp)
   double gravity_m_s2 = 9.80665;
+  bool operator==(const EvaluationSettings&) const = default;  // the same model, field by field
 };
 
 struct SegmentMeasures {

@@ -18,6 +18,7 @@
 #include "engine/design/design_config.hpp"
 #include "engine/design/design_measures.hpp"
 #include "engine/design/design_problem.hpp"
+#include "engine/design/measures_memo.hpp"
 #include "fem/scenes/rra_scene.hpp"
 #include "objectives/payload_capacity.hpp"
 #include "fem/core/input_error.hpp"
@@ -446,4 +447,35 @@ TEST_CASE("an optional strain-life curve sets the allowed strain for the require
   m.min_bending_deg = 90;
   m.durability_log_strain = 0.8;
   CHECK(engine::constraints_of(c, m, 1.0).values[4] == Approx(0.8 / std::pow(0.5, 0.25) - 1));
+}
+
+TEST_CASE("a design run measures each design once per search model, and again for another model", "[design]") {
+  engine::DesignConfig c = engine::read_design_config(thesis_requirements());
+  c.model.working_pressure_kPa = 50;  // a cheap evaluation: the RRA FEMs and the rod to 50 kPa
+  c.model.pressure_steps = 4;
+  const std::vector<double> x = engine::baseline_values(c);
+  engine::MeasuresMemo memo;
+  const objectives::ArmMeasures first = memo.measures(c, x, c.model);
+  CHECK(memo.computed() == 1);
+  // The same design under settings equal field by field (the check model where the config sets it as
+  // the search model): served, the same bits.
+  const objectives::EvaluationSettings same = c.model;
+  const objectives::ArmMeasures again = memo.measures(c, x, same);
+  CHECK(memo.computed() == 1);
+  CHECK(memo.served() == 1);
+  CHECK(again.mass_kg == first.mass_kg);
+  CHECK(again.payload_kg == first.payload_kg);
+  CHECK(again.min_bending_deg == first.min_bending_deg);
+  CHECK(again.burst_utilisation == first.burst_utilisation);
+  // Another model, or another design: measured anew.
+  objectives::EvaluationSettings other = c.model;
+  other.pressure_steps = 5;
+  const objectives::ArmMeasures finer = memo.measures(c, x, other);
+  CHECK(memo.computed() == 2);
+  CHECK(finer.min_bending_deg != first.min_bending_deg);
+  std::vector<double> y = x;
+  y[0] = std::nextafter(y[0], 1e300);
+  (void)memo.measures(c, y, c.model);
+  CHECK(memo.computed() == 3);
+  CHECK(memo.served() == 1);
 }

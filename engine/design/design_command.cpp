@@ -10,6 +10,7 @@
 #include "engine/design/cell_cluster.hpp"
 #include "engine/design/design_problem.hpp"
 #include "engine/design/design_report.hpp"
+#include "engine/design/measures_memo.hpp"
 #include "engine/design/search_log.hpp"
 #include "engine/report/output_files.hpp"
 #include "fem/core/json_reader.hpp"
@@ -64,8 +65,8 @@ void print_constraints(const ConstraintValues& c) {
 optimise::Result search(const DesignConfig& config, double ref_strain, const SolidCorrection& correction,
                         const DiscrepancyModel& discrepancy, double radius, const std::vector<double>& x0,
                         int max_evaluations, bool keep_materials, DesignCheckpoint& checkpoint, SearchLog& log,
-                        double after_s) {
-  optimise::Problem problem = design_problem(config, ref_strain, correction, &checkpoint, &discrepancy);
+                        double after_s, MeasuresMemo& memo) {
+  optimise::Problem problem = design_problem(config, ref_strain, correction, &checkpoint, &discrepancy, &memo);
   if (!discrepancy.empty() && (radius < 1 || keep_materials)) {
     problem.variables = trust_region(config, x0, radius, keep_materials);
     std::cout << "search within the trust region: each variable within " << fixed(100 * radius, 1)
@@ -471,7 +472,7 @@ bool another_round_after_3d_check(const DesignConfig& config, const DesignRun& r
 /// the last optimum (solid_correction.hpp); past feasibility, improvement rounds. The verification
 /// decides feasibility.
 void run_rounds(const DesignConfig& config, DesignRun& run, RoundState& state, double ref_strain, SearchLog& log,
-                DesignCheckpoint& checkpoint, CellCluster& cells, Clock::time_point t0) {
+                DesignCheckpoint& checkpoint, CellCluster& cells, Clock::time_point t0, MeasuresMemo& memo) {
   for (int round = 0;; ++round) {
     if (round > 0) announce_round(config, state, run, ref_strain, log);
     const double verification_s = !config.verify_on_cells ? 0.0
@@ -484,7 +485,8 @@ void run_rounds(const DesignConfig& config, DesignRun& run, RoundState& state, d
     run.result = search(config, ref_strain, state.correction, state.discrepancy, state.radius, state.x0, budget,
                         improving, checkpoint, log,
                         run.rounds.empty() || !run.rounds.back().verification ? verification_s
-                                                                               : run.rounds.back().verification->measures.seconds);
+                                                                               : run.rounds.back().verification->measures.seconds,
+                        memo);
     run.optimum_x = run.result.x;
     if (improving) {
       if (const auto stop = improvement_stop(config, run, ref_strain)) {
@@ -494,11 +496,11 @@ void run_rounds(const DesignConfig& config, DesignRun& run, RoundState& state, d
         return;
       }
     }
-    const objectives::ArmMeasures raw = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.model);
+    const objectives::ArmMeasures raw = memo.measures(config, run.optimum_x, config.model);
     run.optimum = corrected(raw, state.correction);
     run.optimum_uncorrected = raw;
     print_optimum(config, run.result, run.optimum, ref_strain, state.correction, state.discrepancy);
-    state.rod_check = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.check);
+    state.rod_check = memo.measures(config, run.optimum_x, config.check);
     std::optional<objectives::SolidSegmentCheck> check;
     if (config.solid_check_segment > 0) check = check_in_3d(config, run.optimum_x, *state.rod_check, checkpoint);
     std::optional<objectives::CellRodEvaluation> verification;
@@ -515,7 +517,8 @@ void run_rounds(const DesignConfig& config, DesignRun& run, RoundState& state, d
 
 /// The answer is the best verified design (the first that meets every requirement ends the rounds;
 /// with none, the least violating), not merely the last.
-void choose_answer(const DesignConfig& config, DesignRun& run, RoundState& state, double ref_strain) {
+void choose_answer(const DesignConfig& config, DesignRun& run, RoundState& state, double ref_strain,
+                   MeasuresMemo& memo) {
   if (!config.verify_on_cells || run.rounds.empty()) return;
   run.answer_round = best_round(config, run, ref_strain);
   if (run.answer_round + 1 == run.rounds.size()) return;
@@ -525,7 +528,7 @@ void choose_answer(const DesignConfig& config, DesignRun& run, RoundState& state
   run.optimum_x = a.optimum_x;
   run.optimum = a.optimum;
   run.optimum_uncorrected = a.optimum_uncorrected;
-  state.rod_check = objectives::evaluate_arm(make_candidate(config, run.optimum_x), config.check);
+  state.rod_check = memo.measures(config, run.optimum_x, config.check);
 }
 
 /// The answer re-checked by the search model at the check fidelity, and the difference it makes.
@@ -586,7 +589,8 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
   run.config = &config;
   run.reference_strain = ref_strain;
   run.thesis_x = baseline_values(config);
-  run.thesis = objectives::evaluate_arm(make_candidate(config, run.thesis_x), config.model);
+  MeasuresMemo memo;  // the search model's measures of each design, once per run
+  run.thesis = memo.measures(config, run.thesis_x, config.model);
   print_measures("thesis design (Tables 7, 11)", run.thesis);
   print_constraints(constraints_of(config, run.thesis, ref_strain));
 
@@ -602,8 +606,8 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
     if (run.thesis_verification && run.thesis_verification->ok())
       learn(config, ref_strain, state, run.thesis_x, run.thesis_verification->measures, run.thesis);
   }
-  run_rounds(config, run, state, ref_strain, log, checkpoint, cells, t0);
-  choose_answer(config, run, state, ref_strain);
+  run_rounds(config, run, state, ref_strain, log, checkpoint, cells, t0, memo);
+  choose_answer(config, run, state, ref_strain, memo);
   recheck_answer(config, run, state, ref_strain);
   peaks_one_level_finer(config, run, ref_strain);
   print_rounds(config, run, ref_strain);

@@ -125,17 +125,18 @@ std::vector<optimise::Variable> trust_region(const DesignConfig& config, const s
 
 optimise::Problem design_problem(const DesignConfig& config, double reference_strain,
                                  const SolidCorrection& correction, DesignCheckpoint* checkpoint,
-                                 const DiscrepancyModel* discrepancy) {
+                                 const DiscrepancyModel* discrepancy, MeasuresMemo* memo) {
   optimise::Problem p;
   for (const auto& v : config.variables) p.variables.push_back(v.variable);
   p.constraint_names = constraints_of(config, {}, reference_strain).names;
-  p.evaluate = [&config, reference_strain, correction, checkpoint, discrepancy,
+  p.evaluate = [&config, reference_strain, correction, checkpoint, discrepancy, memo,
                 names = p.constraint_names](const std::vector<double>& x) {
     std::optional<optimise::Evaluation> raw = checkpoint ? checkpoint->evaluation(x) : std::nullopt;
     if (!raw) {
       raw.emplace();
       try {
-        const objectives::ArmMeasures m = objectives::evaluate_arm(make_candidate(config, x), config.model);
+        const objectives::ArmMeasures m = memo ? memo->measures(config, x, config.model)
+                                               : objectives::evaluate_arm(make_candidate(config, x), config.model);
         raw->objective = objective_of(config, m, reference_strain);
         raw->constraints = constraints_of(config, m, reference_strain).values;
       } catch (const fem::InputError& err) {

@@ -16,6 +16,7 @@
 #include "engine/design/design_checkpoint.hpp"
 #include "engine/design/design_config.hpp"
 #include "engine/design/discrepancy_model.hpp"
+#include "engine/design/measures_memo.hpp"
 #include "engine/design/solid_correction.hpp"
 #include "engine/optimiser/optimiser.hpp"
 #include "objectives/arm_evaluation.hpp"
@@ -47,10 +48,11 @@ ConstraintValues corrected_constraints(ConstraintValues raw, const SolidCorrecti
 /// The optimiser's problem: the objective and constraints g + config.search_margin ≤ 0 of the
 /// search model's measures, constraints corrected by `correction` and then shifted by the
 /// discrepancy model's δ(u) (optional; discrepancy_model.hpp). `checkpoint` (optional) is looked up
-/// before a design is measured and keeps every new measurement, uncorrected.
+/// before a design is measured and keeps every new measurement, uncorrected. `memo` (optional) measures
+/// each design once per run (measures_memo.hpp).
 optimise::Problem design_problem(const DesignConfig& config, double reference_strain,
                                  const SolidCorrection& correction, DesignCheckpoint* checkpoint,
-                                 const DiscrepancyModel* discrepancy = nullptr);
+                                 const DiscrepancyModel* discrepancy = nullptr, MeasuresMemo* memo = nullptr);
 
 /// The design in the normalised space of the discrepancy model: each variable mapped to [0, 1] over
 /// its bounds; a categorical choice to 0 (the correction is of zeroth order across materials: a

@@ -1,0 +1,34 @@
+#include "engine/design/measures_memo.hpp"
+
+#include "engine/design/design_problem.hpp"
+
+namespace softarm::engine {
+
+objectives::ArmMeasures MeasuresMemo::measures(const DesignConfig& config, const std::vector<double>& x,
+                                               const objectives::EvaluationSettings& settings) {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (const Entry& e : entries_)
+      if (e.x == x && e.settings == settings) {
+        ++served_;
+        return e.measures;
+      }
+  }
+  objectives::ArmMeasures m = objectives::evaluate_arm(make_candidate(config, x), settings);
+  const std::lock_guard<std::mutex> lock(mutex_);
+  ++computed_;
+  entries_.push_back({x, settings, m});
+  return m;
+}
+
+int MeasuresMemo::computed() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return computed_;
+}
+
+int MeasuresMemo::served() const {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  return served_;
+}
+
+}  // namespace softarm::engine
