@@ -30,9 +30,12 @@ TEST_CASE("End cells bend a short 3CA as its 3D model does, closer with each rin
   const TcaResult solid = run_tca_scene(spec);
   REQUIRE(solid.path.outcome == PathOutcome::completed);
   std::vector<CellRodTcaResult> rods;
+  TcaRodCells through_three;  // the ring-pitch cells, which do not depend on the end rings, run once
   for (int rings : {3, 2, 0}) {
     spec.cell_rod_end_rings = rings;
-    rods.push_back(run_cell_rod_tca(spec));
+    const TcaRodCells pieces = run_tca_rod_cells(spec, tca_needs_spatial_rod(spec), {}, rings == 3 ? nullptr : &through_three);
+    if (rings == 3) through_three = pieces;
+    rods.push_back(pose_cell_rod_tca(spec, pieces));
     REQUIRE(rods.back().converged);
     CHECK(rods.back().end_rings == rings);
     CHECK(rods.back().end_cells_note.empty());
@@ -60,6 +63,13 @@ TEST_CASE("An end cell: unloaded it stays at rest, and too many rings for the 3C
   CHECK(rest.states.front().elongation_mm == Approx(0).margin(1e-12));
   CHECK(rest.length_mm == Approx(2 * 160.0 / 30));
   CHECK_THROWS_AS(run_tca_end_cell(spec, TcaEnd::top, 4, EndFaceSupport::bonded), std::logic_error);  // 2·4 ≥ 7 rings
+  // Ring-pitch cells handed on from a run about other rings, or without the torsion asked for, are refused.
+  TcaRodCells other;
+  other.rings = {1, 7};
+  CHECK_THROWS_AS(run_tca_rod_cells(spec, false, {}, &other), std::logic_error);
+  other.rings = cell_rod_rings(7);
+  other.cells.resize(other.rings.size());
+  CHECK_THROWS_AS(run_tca_rod_cells(spec, true, {}, &other), std::logic_error);
   // The cell rod asked for such ends takes rigid caps and says why.
   spec.cell_rod_end_rings = 4;
   const CellRodTcaResult rod = run_cell_rod_tca(spec);

@@ -64,7 +64,8 @@ bool tca_needs_spatial_rod(const TcaSceneSpec& spec) {
   return !choose_tca_model(mirror).half;
 }
 
-TcaRodCells run_tca_rod_cells(const TcaSceneSpec& spec, bool with_torsion, const TaskProgress& progress) {
+TcaRodCells run_tca_rod_cells(const TcaSceneSpec& spec, bool with_torsion, const TaskProgress& progress,
+                              const TcaRodCells* ring_cells) {
   TcaRodCells out;
   const int n = spec.design.actuator.ring_count;
   out.with_torsion = with_torsion;
@@ -76,9 +77,17 @@ TcaRodCells run_tca_rod_cells(const TcaSceneSpec& spec, bool with_torsion, const
   out.ends.resize(end_count);
   out.torsion.assign(out.rings.size(), 0.0);
   out.end_twist.assign(end_count, 0.0);
+  if (ring_cells) {
+    if (ring_cells->rings != out.rings || ring_cells->cells.size() != out.rings.size() ||
+        (with_torsion && !ring_cells->with_torsion))
+      throw std::logic_error("run_tca_rod_cells: ring-pitch cells run about other rings or without torsion");
+    out.cells = ring_cells->cells;
+    out.torsion = ring_cells->torsion;
+  }
+  const int ring_tasks = ring_cells ? 0 : static_cast<int>(out.rings.size());
   // The cells side by side, one thread each (parallel_tasks); the larger end cells first.
   const auto t_cells = std::chrono::steady_clock::now();
-  parallel_tasks(end_count + static_cast<int>(out.rings.size()), [&](int i) {
+  parallel_tasks(end_count + ring_tasks, [&](int i) {
     if (i < end_count) {
       const TcaEnd end = i == 0 ? TcaEnd::bottom : TcaEnd::top;
       out.ends[i] = run_tca_end_cell(spec, end, out.end_rings, tca_scene_end_support(end));

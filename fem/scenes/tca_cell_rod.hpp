@@ -62,8 +62,12 @@ struct TcaRodCells {
   std::vector<double> end_twist;  // twist compliance of each bonded end at rest (with_torsion; 0: free end)
   double seconds = 0;             // the cells side by side, one thread each
 };
-/// `progress` is told as each cell ends (parallel_tasks).
-TcaRodCells run_tca_rod_cells(const TcaSceneSpec& spec, bool with_torsion, const TaskProgress& progress = {});
+/// `progress` is told as each cell ends (parallel_tasks). `ring_cells` (optional): the pieces of an
+/// earlier call for the same spec but for its end rings; its ring-pitch cells (and their torsion),
+/// which do not depend on the end rings, are taken as they are and only the end cells run. Throws
+/// std::logic_error where they were run about other rings or without the torsion asked for.
+TcaRodCells run_tca_rod_cells(const TcaSceneSpec& spec, bool with_torsion, const TaskProgress& progress = {},
+                              const TcaRodCells* ring_cells = nullptr);
 /// The cell rod of spec's loads on cells run for spec's design, mesh and pressures (what
 /// run_cell_rod_tca does after running them). Throws std::logic_error for loads out of one plane on
 /// cells without torsion.
