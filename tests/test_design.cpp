@@ -455,12 +455,12 @@ TEST_CASE("a design run measures each design once per search model, and again fo
   c.model.pressure_steps = 4;
   const std::vector<double> x = engine::baseline_values(c);
   engine::MeasuresMemo memo;
-  const objectives::ArmMeasures first = memo.measures(c, x, c.model);
+  const objectives::ArmMeasures first = memo.measures(x, engine::make_candidate(c, x), c.model);
   CHECK(memo.computed() == 1);
   // The same design under settings equal field by field (the check model where the config sets it as
   // the search model): served, the same bits.
   const objectives::EvaluationSettings same = c.model;
-  const objectives::ArmMeasures again = memo.measures(c, x, same);
+  const objectives::ArmMeasures again = memo.measures(x, engine::make_candidate(c, x), same);
   CHECK(memo.computed() == 1);
   CHECK(memo.served() == 1);
   CHECK(again.mass_kg == first.mass_kg);
@@ -470,12 +470,12 @@ TEST_CASE("a design run measures each design once per search model, and again fo
   // Another model, or another design: measured anew.
   objectives::EvaluationSettings other = c.model;
   other.pressure_steps = 5;
-  const objectives::ArmMeasures finer = memo.measures(c, x, other);
+  const objectives::ArmMeasures finer = memo.measures(x, engine::make_candidate(c, x), other);
   CHECK(memo.computed() == 2);
   CHECK(finer.min_bending_deg != first.min_bending_deg);
   std::vector<double> y = x;
   y[0] = std::nextafter(y[0], 1e300);
-  (void)memo.measures(c, y, c.model);
+  (void)memo.measures(y, engine::make_candidate(c, y), c.model);
   CHECK(memo.computed() == 3);
   CHECK(memo.served() == 1);
 }

@@ -482,11 +482,11 @@ void run_rounds(const DesignConfig& config, DesignRun& run, RoundState& state, d
     const int budget = improving && config.improvement_evaluations > 0
                            ? std::min(config.improvement_evaluations, config.optimiser.max_evaluations)
                            : config.optimiser.max_evaluations;
+    const double after_s = run.rounds.empty() || !run.rounds.back().verification
+                               ? verification_s
+                               : run.rounds.back().verification->measures.seconds;
     run.result = search(config, ref_strain, state.correction, state.discrepancy, state.radius, state.x0, budget,
-                        improving, checkpoint, log,
-                        run.rounds.empty() || !run.rounds.back().verification ? verification_s
-                                                                               : run.rounds.back().verification->measures.seconds,
-                        memo);
+                        improving, checkpoint, log, after_s, memo);
     run.optimum_x = run.result.x;
     if (improving) {
       if (const auto stop = improvement_stop(config, run, ref_strain)) {
@@ -496,11 +496,12 @@ void run_rounds(const DesignConfig& config, DesignRun& run, RoundState& state, d
         return;
       }
     }
-    const objectives::ArmMeasures raw = memo.measures(config, run.optimum_x, config.model);
+    const objectives::ArmMeasures raw =
+        memo.measures(run.optimum_x, make_candidate(config, run.optimum_x), config.model);
     run.optimum = corrected(raw, state.correction);
     run.optimum_uncorrected = raw;
     print_optimum(config, run.result, run.optimum, ref_strain, state.correction, state.discrepancy);
-    state.rod_check = memo.measures(config, run.optimum_x, config.check);
+    state.rod_check = memo.measures(run.optimum_x, make_candidate(config, run.optimum_x), config.check);
     std::optional<objectives::SolidSegmentCheck> check;
     if (config.solid_check_segment > 0) check = check_in_3d(config, run.optimum_x, *state.rod_check, checkpoint);
     std::optional<objectives::CellRodEvaluation> verification;
@@ -528,7 +529,7 @@ void choose_answer(const DesignConfig& config, DesignRun& run, RoundState& state
   run.optimum_x = a.optimum_x;
   run.optimum = a.optimum;
   run.optimum_uncorrected = a.optimum_uncorrected;
-  state.rod_check = memo.measures(config, run.optimum_x, config.check);
+  state.rod_check = memo.measures(run.optimum_x, make_candidate(config, run.optimum_x), config.check);
 }
 
 /// The answer re-checked by the search model at the check fidelity, and the difference it makes.
@@ -590,7 +591,7 @@ int run_design(const std::string& file, const DesignOverrides& overrides) {
   run.reference_strain = ref_strain;
   run.thesis_x = baseline_values(config);
   MeasuresMemo memo;  // the search model's measures of each design, once per run
-  run.thesis = memo.measures(config, run.thesis_x, config.model);
+  run.thesis = memo.measures(run.thesis_x, make_candidate(config, run.thesis_x), config.model);
   print_measures("thesis design (Tables 7, 11)", run.thesis);
   print_constraints(constraints_of(config, run.thesis, ref_strain));
 

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "engine/design/design_measures.hpp"
+#include "engine/design/measures_memo.hpp"
 #include "fem/core/input_error.hpp"
 #include "fem/core/parallel.hpp"
 
@@ -135,7 +136,7 @@ optimise::Problem design_problem(const DesignConfig& config, double reference_st
     if (!raw) {
       raw.emplace();
       try {
-        const objectives::ArmMeasures m = memo ? memo->measures(config, x, config.model)
+        const objectives::ArmMeasures m = memo ? memo->measures(x, make_candidate(config, x), config.model)
                                                : objectives::evaluate_arm(make_candidate(config, x), config.model);
         raw->objective = objective_of(config, m, reference_strain);
         raw->constraints = constraints_of(config, m, reference_strain).values;

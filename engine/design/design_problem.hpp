@@ -16,12 +16,13 @@
 #include "engine/design/design_checkpoint.hpp"
 #include "engine/design/design_config.hpp"
 #include "engine/design/discrepancy_model.hpp"
-#include "engine/design/measures_memo.hpp"
 #include "engine/design/solid_correction.hpp"
 #include "engine/optimiser/optimiser.hpp"
 #include "objectives/arm_evaluation.hpp"
 
 namespace softarm::engine {
+
+class MeasuresMemo;  // measures_memo.hpp
 
 /// A candidate from the variables' values (others from the baseline). Throws
 /// fem::InputError when the geometry cannot be built (touching rings, ...).

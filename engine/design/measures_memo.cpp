@@ -1,10 +1,8 @@
 #include "engine/design/measures_memo.hpp"
 
-#include "engine/design/design_problem.hpp"
-
 namespace softarm::engine {
 
-objectives::ArmMeasures MeasuresMemo::measures(const DesignConfig& config, const std::vector<double>& x,
+objectives::ArmMeasures MeasuresMemo::measures(const std::vector<double>& x, const objectives::ArmCandidate& arm,
                                                const objectives::EvaluationSettings& settings) {
   {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -14,7 +12,7 @@ objectives::ArmMeasures MeasuresMemo::measures(const DesignConfig& config, const
         return e.measures;
       }
   }
-  objectives::ArmMeasures m = objectives::evaluate_arm(make_candidate(config, x), settings);
+  objectives::ArmMeasures m = objectives::evaluate_arm(arm, settings);
   const std::lock_guard<std::mutex> lock(mutex_);
   ++computed_;
   entries_.push_back({x, settings, m});
