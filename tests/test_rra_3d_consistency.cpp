@@ -139,7 +139,8 @@ TEST_CASE("3D RRA against the axisymmetric RRA at level 4 (square rings): Hex27,
       const auto error = [](double value, double f) { return std::abs(value / f - 1); };
       CAPTURE(rings, fine.volume_change_mm3, full.volume_change_mm3, reduced.volume_change_mm3);
       CAPTURE(fine.centre_extension_mm, full.centre_extension_mm, reduced.centre_extension_mm);
-      CHECK(error(reduced.volume_change_mm3, fine.volume_change_mm3) < error(full.volume_change_mm3, fine.volume_change_mm3));
+      CHECK(error(reduced.volume_change_mm3, fine.volume_change_mm3) <
+            error(full.volume_change_mm3, fine.volume_change_mm3));
       CHECK(error(reduced.centre_extension_mm, fine.centre_extension_mm) <
             error(full.centre_extension_mm, fine.centre_extension_mm));
       CHECK(error(reduced.volume_change_mm3, fine.volume_change_mm3) < 0.04);

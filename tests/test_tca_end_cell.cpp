@@ -33,7 +33,8 @@ TEST_CASE("End cells bend a short 3CA as its 3D model does, closer with each rin
   TcaRodCells through_three;  // the ring-pitch cells, which do not depend on the end rings, run once
   for (int rings : {3, 2, 0}) {
     spec.cell_rod_end_rings = rings;
-    const TcaRodCells pieces = run_tca_rod_cells(spec, tca_needs_spatial_rod(spec), {}, rings == 3 ? nullptr : &through_three);
+    const TcaRodCells pieces =
+        run_tca_rod_cells(spec, tca_needs_spatial_rod(spec), {}, rings == 3 ? nullptr : &through_three);
     if (rings == 3) through_three = pieces;
     rods.push_back(pose_cell_rod_tca(spec, pieces));
     REQUIRE(rods.back().converged);

@@ -46,8 +46,8 @@ void read_solver(JsonReader solver, fem::NewtonSettings& nw, fem::StepSettings& 
   nw.residual_tolerance = solver.number("residual_tolerance", nw.residual_tolerance, Range::open(0, 1),
                                         "‖r‖ / max(‖r₀‖, ‖f_load‖) at convergence");
   nw.update_tolerance = solver.number("update_tolerance", nw.update_tolerance, Range::open(0, 1),
-                                      "‖δx‖ / ‖u‖ at convergence, or the bound on the error left that the last two full steps' "
-                                      "contraction gives");
+                                      "‖δx‖ / ‖u‖ at convergence, or the bound on the error left that the "
+                                      "last two full steps' contraction gives");
   nw.shift_indefinite_tangent =
       solver.choice("indefinite_tangent", nw.shift_indefinite_tangent ? "shifted_cholesky" : "lu",
                     {"shifted_cholesky", "lu"},

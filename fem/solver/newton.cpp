@@ -69,8 +69,8 @@ bool settled(const IterateHistory& h, int it, double rel_res, const Evaluation& 
   // last two full steps contract, the bound on what is left (remaining_error.hpp) says so one
   // iteration before the update itself falls below it. The thesis RRA's steps past 165 kPa: 2
   // iterations instead of 3, the third's update at 1e-10.
-  const bool contracted =
-      it >= 2 && h.last_two_full && remaining_error_bound(h.previous_update, h.last_update) <= settings.update_tolerance;
+  const bool contracted = it >= 2 && h.last_two_full &&
+                          remaining_error_bound(h.previous_update, h.last_update) <= settings.update_tolerance;
   return (residual_ok && (it == 0 || update_ok || energy_ok || contracted)) || (update_ok && energy_ok) || at_floor;
 }
 

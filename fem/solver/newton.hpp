@@ -4,8 +4,9 @@
 // larger of the first iteration's residual and the load's force scale, AND
 // either the update normalised by the displacement, or the error that the last
 // two full steps' contraction leaves at most (remaining_error.hpp), within the
-// update tolerance, or the energy norm |δx·r| normalised by its first value; or, when the residual sits on its round-off
-// floor, update and energy norm both below tolerance, or the update below
+// update tolerance, or the energy norm |δx·r| normalised by its first value;
+// or, when the residual sits on its round-off floor, update and energy norm
+// both below tolerance, or the update below
 // tolerance and the residual no longer falling, within 100× its tolerance, or beyond the floor that
 // rounding the positions leaves by no more (residual_beyond_roundoff). One row per iteration is kept for the
 // convergence table.
