@@ -8,11 +8,11 @@
 namespace softarm::engine {
 
 /// objectives::evaluate_arm of the design x (the variables; `arm` is the candidate they make) under
-/// `settings`, computed once per run: the run measures
-/// the start design before its first search evaluates it again, each search's optimum again for its
-/// report, and the check model's measures equal the search model's where the config sets them alike.
-/// Safe to call from the search's concurrent evaluations (two asking for one design at once may both
-/// compute it). Designs that cannot be built throw, as evaluate_arm does, and are not kept.
+/// `settings`, computed once per run: the run measures the start design before its first search
+/// evaluates it again, each search's optimum again for its report, and the check model's measures
+/// equal the search model's where the config sets them alike. Safe to call from the search's
+/// concurrent evaluations (two asking for one design at once may both compute it). Designs that
+/// cannot be built throw, as evaluate_arm does, and are not kept.
 class MeasuresMemo {
  public:
   objectives::ArmMeasures measures(const std::vector<double>& x, const objectives::ArmCandidate& arm,
