@@ -180,7 +180,9 @@ struct PressurePathSpec {
   /// Coordinates per node: 2 for the axisymmetric (r, z), 3 for solids with z along the axis;
   /// 0 leaves the location of an unstable mode out of the diagnosis.
   int node_dimension = 0;
-  NewtonSettings newton;
+  // The unstable-branch guard on (NewtonSettings::max_indefinite_iterations), as in the 3D scenes:
+  // past a limit point a step gives up after 4 indefinite iterations without progress instead of 20.
+  NewtonSettings newton{.max_indefinite_iterations = 4};
   StepSettings steps;
   LimitPointSettings limit;
   PathCheckpoint checkpoint;

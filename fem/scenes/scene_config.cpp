@@ -62,7 +62,7 @@ void read_solver(JsonReader solver, fem::NewtonSettings& nw, fem::StepSettings& 
       "max_indefinite_iterations", nw.max_indefinite_iterations, Range::closed(0, 1000),
       "a Newton step gives up (and the load step is cut back) after this many iterations on an indefinite tangent "
       "that did not halve the best residual so far, with none between that did, or where it converges on an indefinite "
-      "tangent: no stable equilibrium near that load; 0: never (the 3D scenes' default is 4)");
+      "tangent: no stable equilibrium near that load; 0: never (the default is 4)");
   nw.rotate_stiff_parts = solver.boolean(
       "rotate_stiff_parts", nw.rotate_stiff_parts,
       "Newton's update applies each stiff part's (ABS ring's, connector's) best-fit rotation as a finite rotation, so "
