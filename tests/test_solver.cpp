@@ -19,6 +19,7 @@
 #include "fem/solver/lowest_modes.hpp"
 #include "fem/solver/preconditioned_cg.hpp"
 #include "fem/solver/remaining_error.hpp"
+#include "fem/solver/symbolic_analysis_cache.hpp"
 #include "fem/solver/unstable_branch_count.hpp"
 #include "support/test_problems.hpp"
 
@@ -553,6 +554,7 @@ TEST_CASE("two solvers factorising side by side give the bits each gives alone (
   LinearSolver::Options options;
   options.ordering = LinearSolver::Options::Ordering::metis;
   options.mode = LinearSolver::Options::Mode::supernodal;
+  options.share_analysis = false;  // each solver calls METIS (the kept analyses: the next test)
   const auto solve_alone = [&] {  // no Catch assertion inside: the tasks run it on two threads
     LinearSolver solver(options);
     return solver.factorize(K) == LinearSolver::Status::positive_definite ? Eigen::VectorXd(solver.solve(b))
@@ -572,6 +574,60 @@ TEST_CASE("two solvers factorising side by side give the bits each gives alone (
     }
   }
   set_thread_count(saved);
+}
+
+TEST_CASE("a solver of a pattern analysed before takes the kept analysis: the same factor to the bit, no METIS", "[solver]") {
+  // A cell rod runs many solvers on few patterns (symbolic_analysis_cache.hpp). A pattern no other
+  // test makes: the grid Laplacian with its first and last unknowns coupled.
+  SparseMatrix K = grid_laplacian_3d(17);
+  const Eigen::Index n = K.rows();
+  K.coeffRef(0, n - 1) = -0.1;
+  K.coeffRef(n - 1, 0) = -0.1;
+  K.makeCompressed();
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+  const auto solved = [&](const SparseMatrix& A, const LinearSolver::Options& options, double* flops = nullptr) {
+    LinearSolver solver(options);
+    REQUIRE(solver.factorize(A) == LinearSolver::Status::positive_definite);
+    if (flops) *flops = solver.factor_flops;
+    return Eigen::VectorXd(solver.solve(b));
+  };
+  LinearSolver::Options fresh;
+  fresh.share_analysis = false;
+  double flops_fresh = 0, flops_made = 0, flops_served = 0;
+  const Eigen::VectorXd reference = solved(K, fresh, &flops_fresh);
+  const AnalysisCounts before = analysis_counts();
+  const Eigen::VectorXd made = solved(K, {}, &flops_made);
+  const AnalysisCounts after_first = analysis_counts();
+  CHECK(after_first.made == before.made + 1);  // the first of its pattern: analysed, and kept
+  CHECK(after_first.served == before.served);
+  const Eigen::VectorXd served = solved(K, {}, &flops_served);
+  const AnalysisCounts after_second = analysis_counts();
+  CHECK(after_second.served == after_first.served + 1);  // the second: served, METIS not called
+  CHECK(after_second.made == after_first.made);
+  for (const Eigen::VectorXd* x : {&made, &served}) {
+    REQUIRE(x->size() == reference.size());
+    CHECK(std::memcmp(x->data(), reference.data(), sizeof(double) * n) == 0);
+  }
+  CHECK(flops_served == flops_fresh);
+  CHECK(flops_made == flops_fresh);
+  // Other values on the same pattern: served, and solved right.
+  SparseMatrix scaled = K;
+  scaled.diagonal() *= 2.0;
+  const Eigen::VectorXd x_scaled = solved(scaled, {});
+  CHECK(analysis_counts().served == after_second.served + 1);
+  CHECK((scaled * x_scaled - b).norm() <= 1e-10 * b.norm());
+  // Another pattern, or other settings: analysed anew.
+  SparseMatrix other = K;
+  other.coeffRef(1, n - 2) = -0.1;
+  other.coeffRef(n - 2, 1) = -0.1;
+  other.makeCompressed();
+  const Eigen::VectorXd x_other = solved(other, {});
+  CHECK(analysis_counts().made == after_second.made + 1);
+  CHECK((other * x_other - b).norm() <= 1e-10 * b.norm());
+  LinearSolver::Options amd;
+  amd.ordering = LinearSolver::Options::Ordering::amd;
+  solved(K, amd);
+  CHECK(analysis_counts().made == after_second.made + 2);
 }
 
 TEST_CASE("CHOLMOD factorises from either triangle of K: the same solution to rounding, shifted or not", "[solver]") {

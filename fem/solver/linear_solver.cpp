@@ -6,9 +6,11 @@
 #include <chrono>
 #include <limits>
 #include <mutex>
+#include <optional>
 
 #include "fem/core/parallel.hpp"
 #include "fem/solver/preconditioned_cg.hpp"
+#include "fem/solver/symbolic_analysis_cache.hpp"
 
 namespace softarm::fem {
 namespace {
@@ -108,6 +110,42 @@ void LinearSolver::configure() {
   }
 }
 
+void LinearSolver::Cholesky::adopt_analysis(cholmod_factor* symbolic) {
+  if (this->m_cholmodFactor) cholmod_free_factor(&this->m_cholmodFactor, &this->cholmod());
+  this->m_cholmodFactor = symbolic;
+  this->m_isInitialized = true;
+  this->m_info = Eigen::Success;
+  this->m_analysisIsOk = true;
+  this->m_factorizationIsOk = false;
+}
+
+void LinearSolver::analyse(const SparseMatrix& K) {
+  Cholesky& c = cholesky_;
+  // One analysis at a time in the process: CHOLMOD's default ordering calls METIS, which seeds one
+  // random generator shared by every thread at each call. Two cells analysed side by side drew from
+  // it in turn, got orderings that depended on the timing, and so factors rounded differently: the
+  // thesis 3CA's outputs differed by up to 3e-12 from run to run. Serialised, each call seeds and
+  // draws alone, and a cell run beside another gives the bits it gives alone. The lock costs an
+  // analysis (0.07 s a cell) of waiting at most; a second solver of the pattern then finds it kept.
+  static std::mutex metis;
+  const std::lock_guard<std::mutex> one_at_a_time(metis);
+  const PatternKey key =
+      pattern_key(K, {static_cast<int>(options_.mode), static_cast<int>(options_.ordering), options_.postorder,
+                      options_.large_supernodes, options_.supernodal_switch});
+  std::optional<KeptAnalysis> kept;
+  if (options_.share_analysis) kept = find_analysis(key, c.cholmod());
+  if (kept) {
+    c.adopt_analysis(kept->symbolic);
+    factor_flops = kept->flops;
+    factor_nonzeros = kept->nonzeros;
+    return;
+  }
+  c.analyzePattern(K);
+  factor_flops = c.cholmod().fl;
+  factor_nonzeros = c.cholmod().lnz;
+  if (options_.share_analysis && c.factor()) keep_analysis(key, *c.factor(), factor_flops, factor_nonzeros);
+}
+
 // As Eigen's CholmodBase::factorize, with the triangle chosen per call: CHOLMOD's analysis
 // orders the pattern of K + Kᵀ whichever triangle it was given, so one analysis serves both.
 void LinearSolver::Cholesky::factorize_from(const SparseMatrix& K, bool upper) {
@@ -130,21 +168,9 @@ bool LinearSolver::cholesky_factorize(const SparseMatrix& K) {
   Cholesky& c = cholesky_;
   if (!cholesky_analysed_) {
     const auto t0 = std::chrono::steady_clock::now();
-    {
-      // One analysis at a time in the process: CHOLMOD's default ordering calls METIS, which
-      // seeds one random generator shared by every thread at each call. Two cells analysed side
-      // by side drew from it in turn, got orderings that depended on the timing, and so factors
-      // rounded differently: the thesis 3CA's outputs differed by up to 3e-12 from run to run.
-      // Serialised, each call seeds and draws alone, and a cell run beside another gives the
-      // bits it gives alone. The lock costs an analysis (0.07 s a cell) of waiting at most.
-      static std::mutex metis;
-      const std::lock_guard<std::mutex> one_at_a_time(metis);
-      c.analyzePattern(K);
-    }
+    analyse(K);
     cholesky_analysed_ = true;
     analyse_seconds += seconds_since(t0);
-    factor_flops = c.cholmod().fl;
-    factor_nonzeros = c.cholmod().lnz;
     supernodal = c.factor() && c.factor()->is_super;
   }
   const auto t0 = std::chrono::steady_clock::now();

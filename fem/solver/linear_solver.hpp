@@ -54,6 +54,10 @@ class LinearSolver {
     /// CG on an earlier factor preconditions with that factor copied to single precision
     /// (single_precision_factor.hpp) where it is supernodal; false: with the double factor.
     bool single_precision_preconditioner = true;
+    /// The analysis of K's pattern is the process's: taken from an earlier solver's of the same pattern
+    /// and settings where there is one, kept for later ones (symbolic_analysis_cache.hpp); false:
+    /// analysed afresh, and not kept.
+    bool share_analysis = true;
   };
 
   LinearSolver() : LinearSolver(Options{}) {}
@@ -110,7 +114,13 @@ class LinearSolver {
   struct Cholesky : Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> {
     const cholmod_factor* factor() const { return this->m_cholmodFactor; }
     void factorize_from(const SparseMatrix& K, bool upper);
+    /// Takes `symbolic` (an analysis of K's pattern, allocated in this solver's workspace) as its own,
+    /// as analyzePattern would have made it.
+    void adopt_analysis(cholmod_factor* symbolic);
   };
+  /// CHOLMOD's analysis of K's pattern, or the copy of one made before in this process for the same
+  /// pattern and settings (symbolic_analysis_cache.hpp).
+  void analyse(const SparseMatrix& K);
   bool upper_triangle() const;  // the triangle cholesky_factorize hands CHOLMOD (Options::Triangle)
   Options options_;
   Cholesky cholesky_;
