@@ -2,8 +2,10 @@
 // (at rest, with two and with three equal principal stretches, at large
 // strain), the volumetric polynomial, cross-law identities, built-in data and
 // JSON validation.
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -17,6 +19,7 @@
 #include "fem/materials/ogden.hpp"
 #include "fem/materials/principal_stress.hpp"
 #include "fem/materials/saint_venant_kirchhoff.hpp"
+#include "fem/materials/symmetric_eigen3.hpp"
 #include "fem/materials/volumetric_polynomial.hpp"
 #include "fem/materials/yeoh.hpp"
 
@@ -251,6 +254,74 @@ TEST_CASE("a law's energy at given eigenvalues equals its jets' (the closed form
       CHECK((at.h - jets.h).cwiseAbs().maxCoeff() <= 1e-11 * (1 + jets.h.cwiseAbs().maxCoeff()));
     }
   }
+}
+
+TEST_CASE("Saint Venant-Kirchhoff in tensor form gives the principal form's W, P and A", "[materials]") {
+  // The same law seen only through its eigenvalues: principal_energy_at forwarded, no Lamé constants.
+  class SpectralOnly final : public HyperelasticLaw {
+   public:
+    explicit SpectralOnly(std::shared_ptr<const HyperelasticLaw> law) : law_(std::move(law)) {}
+    std::string kind() const override { return law_->kind(); }
+    Jet3 principal_energy(const Jet3& c1, const Jet3& c2, const Jet3& c3) const override {
+      return law_->principal_energy(c1, c2, c3);
+    }
+    Jet3 principal_energy_at(double c1, double c2, double c3) const override {
+      return law_->principal_energy_at(c1, c2, c3);
+    }
+    double initial_shear_modulus() const override { return law_->initial_shear_modulus(); }
+    double initial_bulk_modulus() const override { return law_->initial_bulk_modulus(); }
+    nlohmann::json to_json() const override { return law_->to_json(); }
+
+   private:
+    std::shared_ptr<const HyperelasticLaw> law_;
+  };
+  const auto svk = builtin_material("digital_abs", "test").law;
+  REQUIRE(svk->green_strain_hooke());
+  const SpectralOnly spectral(svk);
+  REQUIRE_FALSE(spectral.green_strain_hooke());
+  for (const auto& [where, F] : test_deformations()) {
+    INFO(where);
+    const PrincipalStress tensor = evaluate(*svk, F), principal = evaluate(spectral, F);
+    CHECK(tensor.W == Approx(principal.W).epsilon(1e-13).margin(1e-13 * svk->initial_shear_modulus()));
+    const double P_scale = std::max(svk->initial_shear_modulus(), principal.P.cwiseAbs().maxCoeff());
+    CHECK((tensor.P - principal.P).cwiseAbs().maxCoeff() <= 1e-13 * P_scale);
+    const double A_scale = principal.A.cwiseAbs().maxCoeff();
+    CHECK((tensor.A - principal.A).cwiseAbs().maxCoeff() <= 1e-12 * A_scale);
+  }
+}
+
+TEST_CASE("symmetric_eigen3 keeps the iterative solver's accuracy on every path, at any gap", "[materials]") {
+  // Rotated spectra (1, 1 + g, 2), (1, 2, 2 + 2g) and (1, 1 + g, 1 + 2g) from well apart (g = 0.3) to
+  // equal (g = 0), through the closed form's threshold; and a block-diagonal C (the Jacobi path). The
+  // closed form alone misses the bounds below by 10–1000× at g ≤ 1e-5 (its header's figures).
+  std::vector<Mat3> matrices;
+  for (double g : {0.3, 1e-2, 2e-3, 1e-3, 5e-4, 1e-4, 1e-5, 1e-7, 1e-9, 0.0})
+    for (const Eigen::Vector3d& c : {Eigen::Vector3d(1, 1 + g, 2), Eigen::Vector3d(1, 2, 2 + 2 * g),
+                                     Eigen::Vector3d(1, 1 + g, 1 + 2 * g)})
+      for (const Mat3& R : {rotation(0.3, -0.5, 0.7, 0.2), rotation(-0.6, 0.1, 0.4, 0.8), rotation(0.9, 0.1, 0.2, -0.3)})
+        matrices.push_back(R * (2.5 * c).asDiagonal() * R.transpose());
+  Mat3 block;
+  block << 1.7, 0.4, 0, 0.4, 0.9, 0, 0, 0, 1.3;
+  matrices.push_back(block);
+  for (const Mat3& C : matrices) {
+    Eigen::Vector3d c;
+    Mat3 Q;
+    REQUIRE(symmetric_eigen3(C, c, Q));
+    const double scale = C.norm();
+    INFO("C =\n" << C << "\neigenvalues " << c.transpose());
+    CHECK((C * Q - Q * c.asDiagonal()).norm() <= 1e-14 * scale);
+    CHECK((Q.transpose() * Q - Mat3::Identity()).norm() <= 1e-14);
+    Eigen::Vector3d sorted = c;
+    std::sort(sorted.data(), sorted.data() + 3);
+    const Eigen::Vector3d reference = Eigen::SelfAdjointEigenSolver<Mat3>(C).eigenvalues();
+    CHECK((sorted - reference).cwiseAbs().maxCoeff() <= 1e-14 * scale);
+  }
+  Mat3 nan = Mat3::Identity();
+  nan(0, 1) = nan(1, 0) = std::nan("");
+  nan(0, 2) = nan(2, 0) = 0.1;
+  Eigen::Vector3d c;
+  Mat3 Q;
+  CHECK_FALSE(symmetric_eigen3(nan, c, Q));
 }
 
 TEST_CASE("principal energy of split laws is isochoric", "[materials]") {

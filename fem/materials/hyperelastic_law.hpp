@@ -11,6 +11,7 @@
 //
 // Units: stresses and moduli in MPa, energies in MPa = N·mm/mm³.
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "fem/core/jet.hpp"
@@ -24,6 +25,14 @@ struct VolumetricResponse {
   double U = 0.0;
   double dU = 0.0;
   double d2U = 0.0;
+};
+
+/// Lamé constants of a law that is Hooke's law in the Green-Lagrange strain E = (C − I)/2,
+/// W = λ/2 (tr E)² + μ tr E² (Saint Venant-Kirchhoff). Its stress and tangent need no eigenvalues
+/// of C: evaluate_principal (principal_stress.hpp) takes them in tensor form.
+struct GreenStrainHooke {
+  double lambda_MPa = 0.0;
+  double mu_MPa = 0.0;
 };
 
 class HyperelasticLaw {
@@ -43,6 +52,10 @@ class HyperelasticLaw {
   virtual Jet3 principal_energy_at(double c1, double c2, double c3) const {
     return principal_energy(Jet3::variable(c1, 0), Jet3::variable(c2, 1), Jet3::variable(c3, 2));
   }
+
+  /// The Lamé constants of a law that is Hooke's law in the Green-Lagrange strain; empty for every
+  /// other law.
+  virtual std::optional<GreenStrainHooke> green_strain_hooke() const { return std::nullopt; }
 
   /// Volumetric energy U(J); laws without the split return zeros.
   virtual VolumetricResponse volumetric(double J) const { return {}; }

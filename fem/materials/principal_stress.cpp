@@ -1,8 +1,10 @@
 #include "fem/materials/principal_stress.hpp"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/LU>  // determinant
 #include <algorithm>
 #include <cmath>
+
+#include "fem/materials/symmetric_eigen3.hpp"
 
 namespace softarm::fem {
 namespace {
@@ -32,32 +34,29 @@ double shear_modulus(double ca, double cb, double fa, double fb, double faa, dou
   return 2.0 * (fa - fb) / (ca - cb);
 }
 
-// Eigen-decomposition of a symmetric 3×3 C. Axisymmetric kinematics give a
-// block-diagonal C (no coupling of the hoop direction): then one Jacobi
-// rotation diagonalises the (r, z) block exactly and cheaply (Golub & Van Loan
-// §8.5.2), about 3× faster than the general iterative solver at every Gauss point.
-bool symmetric_eigen(const Mat3& C, Vec3& c, Mat3& Q) {
-  if (C(0, 2) == 0.0 && C(1, 2) == 0.0) {
-    const double a = C(0, 0), b = C(0, 1), d = C(1, 1);
-    double cs = 1.0, sn = 0.0, t = 0.0;
-    if (b != 0.0) {
-      const double tau = (d - a) / (2.0 * b);
-      t = (tau >= 0.0 ? 1.0 : -1.0) / (std::abs(tau) + std::sqrt(1.0 + tau * tau));
-      cs = 1.0 / std::sqrt(1.0 + t * t);
-      sn = t * cs;
-    }
-    c << a - t * b, d + t * b, C(2, 2);
-    Q << cs, sn, 0.0, -sn, cs, 0.0, 0.0, 0.0, 1.0;
-    return true;
-  }
-  // Iterative (QL) solver rather than computeDirect: the closed-form cubic
-  // loses accuracy in the eigenvectors of nearly equal eigenvalues.
-  Eigen::SelfAdjointEigenSolver<Mat3> eig;
-  eig.compute(C, Eigen::ComputeEigenvectors);
-  if (eig.info() != Eigen::Success) return false;
-  c = eig.eigenvalues();
-  Q = eig.eigenvectors();  // column a = n_a
-  return true;
+/// W, P and A of Hooke's law in E = (C − I)/2 without the eigenvalues of C:
+///   S = λ tr E I + 2μ E,  P = F S,
+///   A_iJkL = δ_ik S_JL + F_iI ℂ_IJKL F_kK,  ℂ_IJKL = λ δ_IJ δ_KL + μ (δ_IK δ_JL + δ_IL δ_JK),
+/// so F ℂ F gives λ F_iJ F_kL + μ (FFᵀ)_ik δ_JL + μ F_iL F_kJ. The same W as the principal form.
+std::optional<PrincipalStress> evaluate_green_strain_hooke(const GreenStrainHooke& law, const Mat3& F,
+                                                          bool with_tangent) {
+  const double lambda = law.lambda_MPa, mu = law.mu_MPa;
+  const Mat3 E = 0.5 * (F.transpose() * F - Mat3::Identity());
+  const double trace = E.trace();
+  PrincipalStress out;
+  out.W = 0.5 * lambda * trace * trace + mu * E.squaredNorm();
+  if (!std::isfinite(out.W)) return std::nullopt;
+  const Mat3 S = lambda * trace * Mat3::Identity() + 2.0 * mu * E;
+  out.P = F * S;
+  if (!with_tangent) return out;
+  const Mat3 b = F * F.transpose();
+  for (int k = 0; k < 3; ++k)
+    for (int L = 0; L < 3; ++L)
+      for (int i = 0; i < 3; ++i)
+        for (int J = 0; J < 3; ++J)
+          out.A(3 * i + J, 3 * k + L) = (i == k ? S(J, L) : 0.0) + lambda * F(i, J) * F(k, L) +
+                                        (J == L ? mu * b(i, k) : 0.0) + mu * F(i, L) * F(k, J);
+  return out;
 }
 
 }  // namespace
@@ -66,10 +65,12 @@ std::optional<PrincipalStress> evaluate_principal(const HyperelasticLaw& law, co
   const double J = F.determinant();
   if (!(J > 0.0)) return std::nullopt;
 
+  if (const auto hooke = law.green_strain_hooke()) return evaluate_green_strain_hooke(*hooke, F, with_tangent);
+
   const Mat3 C = F.transpose() * F;
   Vec3 c;
   Mat3 Q;  // column a = n_a
-  if (!symmetric_eigen(C, c, Q) || !(c.minCoeff() > 0.0)) return std::nullopt;
+  if (!symmetric_eigen3(C, c, Q) || !(c.minCoeff() > 0.0)) return std::nullopt;
 
   const Jet3 W = law.principal_energy_at(c[0], c[1], c[2]);
   const Vec3& f = W.g;

@@ -8,6 +8,8 @@
 //                 ℂ_abab = ℂ_abba = γ_ab = 2 (f_a − f_b)/(c_a − c_b)   (a ≠ b),
 // and γ_ab → 2 (f_aa − f_ab) as c_b → c_a (exact limit, see the .cpp for when it is used).
 // Then P = F S and A_iJkL = ∂P_iJ/∂F_kL = δ_ik S_JL + F_iI ℂ_IJKL F_kK.
+// A law that is Hooke's law in the Green-Lagrange strain (HyperelasticLaw::green_strain_hooke,
+// Saint Venant-Kirchhoff) has S and ℂ in tensor form: its points skip the eigenvalues of C.
 #include <Eigen/Core>
 #include <optional>
 

@@ -23,6 +23,7 @@ class SaintVenantKirchhoff final : public HyperelasticLaw {
   Jet3 principal_energy(const Jet3& c1, const Jet3& c2, const Jet3& c3) const override;
   /// The same W with its derivatives in closed form (every ring's Gauss point asks for it).
   Jet3 principal_energy_at(double c1, double c2, double c3) const override;
+  std::optional<GreenStrainHooke> green_strain_hooke() const override { return GreenStrainHooke{lambda_, mu_}; }
   double initial_shear_modulus() const override { return mu_; }
   double initial_bulk_modulus() const override;
   nlohmann::json to_json() const override;
