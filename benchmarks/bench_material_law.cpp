@@ -5,7 +5,11 @@
 // form; the jets (fem/core/jet.hpp) are the reference every law has. This benchmark times both ways,
 // interleaved, in one run:
 //  1. per Gauss point: evaluate_principal with its tangent, for each built-in material, over a set
-//     of deformation gradients (stretches 0.5 to 3, shear, rotation), ns per point;
+//     of deformation gradients (stretches 0.5 to 3, shear, rotation), ns per point: once with C
+//     block-diagonal in (x, y) and z, as axisymmetric kinematics give it (one Jacobi rotation finds
+//     its eigenvalues), once with C full, as the 3D scenes give it (symmetric_eigen3's closed form
+//     or iterative solver). Saint Venant-Kirchhoff's closed form is its tensor form (no eigenvalues);
+//     through the jets it goes through the eigenvalues as every other law;
 //  2. a whole rra scene (default: the thesis RRA) with its tube and ring laws wrapped so that they
 //     answer through the jets: time, Newton iterations and the last extension, which must agree.
 //
@@ -49,8 +53,9 @@ class ThroughJets final : public fem::HyperelasticLaw {
   std::shared_ptr<const fem::HyperelasticLaw> law_;
 };
 
-/// Deformation gradients over the range the scenes meet: stretch, shear and a rotation each.
-std::vector<fem::Mat3> deformations(int count) {
+/// Deformation gradients over the range the scenes meet: stretch, shear and a rotation each; the
+/// shear in the (x, y) plane only where `full` is false (C block-diagonal), out of it too where true.
+std::vector<fem::Mat3> deformations(int count, bool full) {
   std::vector<fem::Mat3> F;
   for (int k = 0; k < count; ++k) {
     const double t = (k + 0.5) / count;
@@ -59,6 +64,7 @@ std::vector<fem::Mat3> deformations(int count) {
     stretch(1, 1) = 1.0 / std::sqrt(stretch(0, 0)) * (1.0 + 0.1 * std::sin(7.0 * t));
     stretch(2, 2) = 1.0 / (stretch(0, 0) * stretch(1, 1)) * (1.0 + 0.02 * std::cos(5.0 * t));
     stretch(0, 1) = 0.3 * std::sin(11.0 * t);
+    if (full) stretch(0, 2) = 0.2 * std::cos(13.0 * t), stretch(1, 2) = 0.15 * std::sin(17.0 * t);
     F.push_back(Eigen::AngleAxisd(3.0 * t, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix() * stretch);
   }
   return F;
@@ -72,10 +78,11 @@ double ns_per_point(const fem::HyperelasticLaw& law, const std::vector<fem::Mat3
   return 1e9 * bench::seconds_since(start) / static_cast<double>(F.size());
 }
 
-void time_points(int points, int repeat) {
-  const auto F = deformations(points);
+void time_points(int points, int repeat, bool full) {
+  const auto F = deformations(points, full);
   double sink = 0;
-  std::printf("evaluate_principal with its tangent, %d deformation gradients, median of %d\n", points, repeat);
+  std::printf("evaluate_principal with its tangent, %d deformation gradients, C %s, median of %d\n", points,
+              full ? "full (3D)" : "block-diagonal (axisymmetric)", repeat);
   std::printf("%-24s %-24s %12s %12s %7s\n", "material", "law", "closed_ns", "jets_ns", "ratio");
   for (const auto& name : fem::builtin_material_names()) {
     const auto law = fem::builtin_material(name, "bench").law;
@@ -128,7 +135,8 @@ int main(int argc, char** argv) try {
   fem::set_thread_count(threads);
   const auto scene = bench::scene_of_kind(config, "rra", "bench_material_law");
   if (!scene) return 2;
-  time_points(points, repeat);
+  time_points(points, repeat, false);
+  time_points(points, repeat, true);
   time_scene(scene->rra, repeat);
   return 0;
 } catch (const fem::InputError& e) {
