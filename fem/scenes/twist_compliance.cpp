@@ -11,55 +11,81 @@
 
 namespace softarm::fem {
 namespace {
-/// The scene's mesh options on the full model (a twist is not mirror-symmetric).
-SolidMeshOptions full_model_options(const TcaSceneSpec& spec) {
-  TcaSceneSpec full = spec;
-  full.allow_symmetry = false;
-  full.gravity_m_s2.setZero();
-  full.chamber_pressure_kPa = {0, 0, 0};
-  return solid_mesh_options(full, choose_tca_model(full));
+/// The scene's mesh options for a twist at rest: the half model y ≥ 0 with chamber 1 on the mirror
+/// plane (turning the geometry about the axis leaves its torsion as it is), unless the config turned
+/// symmetry off; then the full model.
+SolidMeshOptions twist_model_options(const TcaSceneSpec& spec) {
+  TcaSceneSpec rest = spec;
+  rest.gravity_m_s2.setZero();
+  rest.chamber_pressure_kPa = {0, 0, 0};
+  SolidMeshOptions options = solid_mesh_options(rest, choose_tca_model(rest));
+  options.half = spec.allow_symmetry;
+  options.first_axis_angle_rad = 0;
+  return options;
+}
+
+/// A twist is odd under the mirror y → −y (u(x, −y, z) = −M u(x, y, z), M = diag(1, −1, 1)), so on the
+/// mirror plane it has no x or z component: a half model's plane is held in x and z and free across
+/// it, the antisymmetric counterpart of a bending half model's support.
+void hold_antisymmetric_plane(const Mesh& mesh, std::vector<char>& prescribed) {
+  if (const auto it = mesh.node_sets.find("symmetry"); it != mesh.node_sets.end())
+    for (int n : it->second) prescribed[3 * n] = prescribed[3 * n + 2] = 1;
+}
+
+/// K with the rows and columns of the prescribed dofs replaced by the identity's.
+SparseMatrix with_identity_at(SparseMatrix K, const std::vector<char>& prescribed) {
+  for (int k = 0; k < K.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(K, k); it; ++it)
+      if (prescribed[it.row()] || prescribed[it.col()]) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+  return K;
 }
 }  // namespace
 
 double face_twist_compliance(const Mesh& mesh, const std::vector<Material>& part_materials,
                              ElementIntegration integration, const std::string& held, const std::string& twisted,
                              TwistedFace twisted_face) {
-  // Small enough that the rest tangent carries it (the error is O(φ) relative), large enough that
-  // the reaction stands well above round-off in the stresses.
-  constexpr double kTwistRad = 1e-5;
+  // The linear response at rest to a unit twist φ = 1 of the twisted face, u_p = (−Y, X) there:
+  // K₀ the elastic tangent at the undeformed state (no supports), u = u_p + δ with K_ff δ = −(K₀ u_p)_f
+  // over the free dofs f, and the torque the reaction's moment about the axis, T = Σ (X × f)_z over
+  // the face, f = K₀ u. Exact for the tangent at rest, whatever the twist's size.
   const Vector X = flattened_positions(mesh);
-  DirichletConstraints bc;
+  std::vector<char> prescribed(X.size(), 0);
   for (int n : mesh.node_sets.at(held))
-    for (int d = 0; d < 3; ++d) bc.fix(3 * n + d);
+    for (int d = 0; d < 3; ++d) prescribed[3 * n + d] = 1;
   const std::vector<int>& face = mesh.node_sets.at(twisted);
+  Vector turn = Vector::Zero(X.size());
   for (int n : face) {
-    bc.fix(3 * n, -kTwistRad * X[3 * n + 1]);
-    bc.fix(3 * n + 1, kTwistRad * X[3 * n]);
-    if (twisted_face == TwistedFace::warping_held) bc.fix(3 * n + 2);
+    turn[3 * n] = -X[3 * n + 1];
+    turn[3 * n + 1] = X[3 * n];
+    prescribed[3 * n] = prescribed[3 * n + 1] = 1;
+    if (twisted_face == TwistedFace::warping_held) prescribed[3 * n + 2] = 1;
   }
-  EnergyProblem problem(X, bc);
-  const auto elastic = make_elastic_form(mesh, part_materials, VolumetricTreatment::projected_dilatation,
-                                         hex20_integration(mesh, integration));
-  problem.add_form(elastic);
-  problem.finalize();
-  Vector x = X;
-  problem.apply_constraints(x, 1.0);
-  const Evaluation e = problem.evaluate(x, true, true);
+  hold_antisymmetric_plane(mesh, prescribed);
+  EnergyProblem unsupported(X, {});
+  unsupported.add_form(make_elastic_form(mesh, part_materials, VolumetricTreatment::projected_dilatation,
+                                         hex20_integration(mesh, integration)));
+  unsupported.finalize();
+  const Evaluation rest = unsupported.evaluate(X, false, true);
+  if (!rest.status.ok) return std::nan("");
+  const SparseMatrix& K0 = rest.hessian;
+  Vector rhs = -(K0 * turn);
+  for (Eigen::Index i = 0; i < rhs.size(); ++i)
+    if (prescribed[i]) rhs[i] = 0;
   LinearSolver solver;
-  if (!e.status.ok || solver.factorize(e.hessian) != LinearSolver::Status::positive_definite) return std::nan("");
-  x -= solver.solve(e.gradient);
-  // The reaction on the twisted face: the elastic force at its nodes (the gradient that
-  // evaluate() zeroes at prescribed dofs).
-  Vector force = Vector::Zero(x.size());
-  if (!elastic->add(x, nullptr, &force, nullptr).ok) return std::nan("");
+  if (solver.factorize(with_identity_at(K0, prescribed)) != LinearSolver::Status::positive_definite) return std::nan("");
+  const Vector u = turn + solver.solve(rhs);
+  const Vector force = K0 * u;
   double torque = 0;
   for (int n : face) torque += X[3 * n] * force[3 * n + 1] - X[3 * n + 1] * force[3 * n];
-  return torque > 0 ? kTwistRad / torque : std::nan("");
+  // A half model carries half the torque: its mirror image's nodes turn the face as its own do, and
+  // on the plane the other half's elements add as much force across it again.
+  if (mesh.node_sets.count("symmetry")) torque *= 2;
+  return torque > 0 ? 1 / torque : std::nan("");
 }
 
 double end_cell_twist_compliance(const TcaSceneSpec& spec, TcaEnd end, int rings) {
   validate(spec.design);
-  const Mesh mesh = mesh_tca_end(spec.design, end, rings, full_model_options(spec));
+  const Mesh mesh = mesh_tca_end(spec.design, end, rings, twist_model_options(spec));
   const bool top = end == TcaEnd::top;
   return face_twist_compliance(mesh, tca_part_materials(spec), spec.integration, top ? "top" : "bottom",
                                top ? "bottom" : "top", TwistedFace::warping_free);
@@ -98,7 +124,7 @@ std::vector<double> tca_rod_twist_compliances(const TcaSceneSpec& spec, const st
 
 double tca_twist_compliance(const TcaSceneSpec& spec) {
   validate(spec.design);
-  const Mesh mesh = mesh_tca(spec.design, full_model_options(spec));
+  const Mesh mesh = mesh_tca(spec.design, twist_model_options(spec));
   return face_twist_compliance(mesh, tca_part_materials(spec), spec.integration, "top", "bottom",
                                TwistedFace::warping_held);
 }
