@@ -270,6 +270,23 @@ TEST_CASE("Periodic face form: derivatives match finite differences, and a unifo
   CHECK(problem.evaluate(twisted, true, false).gradient.norm() > 1e-4);
   // A top face that is no copy of the bottom one has no pairs.
   CHECK_THROWS_AS(facing_nodes(top, {bottom.front()}, X), std::invalid_argument);
+  // Weighted pairs (a half model's mirror plane): each pair's penalty times its weight. Every weight
+  // ½: half the energy and gradient; weights ½ and 1 in turn: derivatives still consistent.
+  std::vector<double> halves(pairs.size(), 0.5), mixed(pairs.size(), 1.0);
+  for (std::size_t k = 0; k < mixed.size(); k += 2) mixed[k] = 0.5;
+  EnergyProblem halved(X, DirichletConstraints{}), weighted(X, DirichletConstraints{});
+  halved.add_form(std::make_shared<PeriodicFaceForm>(pairs, X, n, n + 1, 2.3, halves));
+  weighted.add_form(std::make_shared<PeriodicFaceForm>(pairs, X, n, n + 1, 2.3, mixed));
+  halved.finalize();
+  weighted.finalize();
+  const Evaluation whole = problem.evaluate(x, true, false), half = halved.evaluate(x, true, false);
+  CHECK(half.energy == Approx(0.5 * whole.energy).epsilon(1e-14));
+  CHECK((half.gradient - 0.5 * whole.gradient).norm() <= 1e-14 * whole.gradient.norm());
+  const auto weighted_err = test::finite_difference_errors(weighted, x, 1e-6);
+  CHECK(weighted_err.gradient < 1e-6);
+  CHECK(weighted_err.hessian < 1e-6);
+  CHECK(weighted.evaluate(x, false, false).energy < whole.energy);
+  CHECK_THROWS_AS(PeriodicFaceForm(pairs, X, n, n + 1, 2.3, {1.0}), std::invalid_argument);
 }
 
 TEST_CASE("3D patch test: a distorted box reproduces a non-symmetric homogeneous deformation", "[solid3d]") {

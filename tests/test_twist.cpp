@@ -8,6 +8,7 @@
 
 #include "fem/mesh/quadratic_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"
+#include "fem/scenes/tca_cell.hpp"
 #include "fem/scenes/twist_compliance.hpp"
 #include "support/test_problems.hpp"
 #include "support/tube_meshes.hpp"
@@ -54,7 +55,7 @@ TEST_CASE("Bonded end cells twist a short 3CA as its 3D model does, where the ce
   CHECK(std::abs(error[1]) < std::abs(error[0]));
 }
 
-TEST_CASE("A twist at rest on the antisymmetric half model is the full model's, to round-off", "[twist]") {
+TEST_CASE("A twist at rest on the antisymmetric half model is the full model's, to round-off", "[twist][cell]") {
   // A twist is odd under the mirror through the axis and chamber 1: the half model, held on its
   // plane in x and z and free across it, carries half the full model's torque. Here against the
   // full model (symmetry turned off), whose chambers keep the scene's angle: the half model's
@@ -66,8 +67,8 @@ TEST_CASE("A twist at rest on the antisymmetric half model is the full model's, 
   half.chamber_pressure_kPa = {150, 0, 0};  // any load: the twist is taken at rest
   TcaSceneSpec full = half;
   full.allow_symmetry = false;
-  const auto agree = [](double a, double b) {
-    INFO("half model " << std::setprecision(15) << a << ", full model " << b << " rad/(N mm)");
+  const auto agree = [](double a, double b) {  // rad/(N mm) for the twists, 1/(N mm²) for 1/GJ
+    INFO("half model " << std::setprecision(15) << a << ", full model " << b);
     REQUIRE(std::isfinite(b));
     CHECK(b > 0);
     CHECK(a == Approx(b).epsilon(1e-10));
@@ -75,4 +76,10 @@ TEST_CASE("A twist at rest on the antisymmetric half model is the full model's, 
   agree(end_cell_twist_compliance(half, TcaEnd::bottom, 1), end_cell_twist_compliance(full, TcaEnd::bottom, 1));
   agree(end_cell_twist_compliance(half, TcaEnd::top, 1), end_cell_twist_compliance(full, TcaEnd::top, 1));
   agree(tca_twist_compliance(half), tca_twist_compliance(full));
+  // The ring-pitch cells' GJ (periodic faces; on the half model the plane's pairs at half weight),
+  // at the bottom, middle and top rings.
+  for (int ring : {1, 3, 5}) {
+    INFO("ring " << ring);
+    agree(1 / cell_torsion_stiffness(half, ring), 1 / cell_torsion_stiffness(full, ring));
+  }
 }

@@ -7,11 +7,17 @@
 namespace softarm::fem {
 
 PeriodicFaceForm::PeriodicFaceForm(std::vector<std::pair<int, int>> pairs, const Vector& reference,
-                                   int shear_twist_pilot, int stretch_bend_pilot, double penalty)
+                                   int shear_twist_pilot, int stretch_bend_pilot, double penalty,
+                                   const std::vector<double>& weights)
     : p1_(shear_twist_pilot), p2_(stretch_bend_pilot), k_(penalty) {
-  for (const auto& [t, b] : pairs)
+  if (!weights.empty() && weights.size() != pairs.size())
+    throw std::invalid_argument("PeriodicFaceForm: " + std::to_string(weights.size()) + " weights for " +
+                                std::to_string(pairs.size()) + " pairs");
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const auto [t, b] = pairs[k];
     pairs_.push_back({t, b, reference.segment<3>(3 * t) - reference.segment<3>(3 * b), reference[3 * b],
-                      reference[3 * b + 1]});
+                      reference[3 * b + 1], weights.empty() ? 1.0 : weights[k]});
+  }
 }
 
 std::array<int, 12> PeriodicFaceForm::dofs(const Pair& p) const {
@@ -38,13 +44,14 @@ FormStatus PeriodicFaceForm::add(const Vector& x, double* value, Vector* gradien
     Eigen::Matrix<double, 12, 1> q;
     for (int i = 0; i < 12; ++i) q[i] = x[d[i]];
     const Eigen::Vector3d r = J * q - p.offset;
-    if (value) *value += 0.5 * k_ * r.squaredNorm();
+    const double stiffness = k_ * p.weight;
+    if (value) *value += 0.5 * stiffness * r.squaredNorm();
     if (gradient) {
-      const Eigen::Matrix<double, 12, 1> g = k_ * J.transpose() * r;
+      const Eigen::Matrix<double, 12, 1> g = stiffness * J.transpose() * r;
       for (int i = 0; i < 12; ++i) (*gradient)[d[i]] += g[i];
     }
     if (hessian) {
-      const Eigen::Matrix<double, 12, 12> h = k_ * J.transpose() * J;  // column-major, as add_block reads it
+      const Eigen::Matrix<double, 12, 12> h = stiffness * J.transpose() * J;  // column-major, as add_block reads it
       hessian->add_block(0, blocks_[k], h.data());
     }
   }

@@ -10,8 +10,9 @@
 // symmetry of stretch and bending, which torsion does not share (its sections warp).
 //
 // A penalty, linear in the dofs (reference coordinates in the offset), used for the
-// tangent's compliances only: Π = ½ k Σ |r|², r the residual of the relation above;
-// gradient k Jᵀr and Hessian k JᵀJ with J = [I, −I, −G(X_b)] per pair.
+// tangent's compliances only: Π = ½ k Σ w |r|², r the residual of the relation above, w the
+// pair's weight (1, or ½ for a pair on a half model's mirror plane, which the half model shares
+// with its mirror image); gradient k w Jᵀr and Hessian k w JᵀJ with J = [I, −I, −G(X_b)] per pair.
 #include <array>
 #include <utility>
 #include <vector>
@@ -24,9 +25,9 @@ class PeriodicFaceForm : public Form {
  public:
   /// `pairs`: (top node, bottom node); `reference`: the mesh's reference positions (3 per
   /// node); the first pilot's x, y, z dofs are t_x, t_y (mm) and φ (rad), the second's a (mm),
-  /// b and c (mm/mm); `penalty` k in N/mm per pair.
+  /// b and c (mm/mm); `penalty` k in N/mm per pair; `weights` one per pair (empty: all 1).
   PeriodicFaceForm(std::vector<std::pair<int, int>> pairs, const Vector& reference, int shear_twist_pilot,
-                   int stretch_bend_pilot, double penalty);
+                   int stretch_bend_pilot, double penalty, const std::vector<double>& weights = {});
   std::string name() const override { return "periodic faces"; }
   void declare_pattern(SparsePattern& pattern) override;
   FormStatus add(const Vector& x, double* value, Vector* gradient, HessianAccumulator* hessian) const override;
@@ -36,6 +37,7 @@ class PeriodicFaceForm : public Form {
     int top, bottom;
     Eigen::Vector3d offset;  // X_t − X_b
     double X, Y;             // the bottom node's reference x, y
+    double weight;
   };
   std::vector<Pair> pairs_;
   int p1_, p2_;

@@ -259,16 +259,96 @@ TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad
   return out;
 }
 
+namespace {
+/// A ring-pitch cell with periodic faces for its torsion (periodic_face_form.hpp): the mesh, its
+/// reference positions with the two pilot nodes after the mesh's, and its forms, the elastic one and
+/// the periodic faces (on a half model, the pairs on the mirror plane at half weight).
+struct TorsionCell {
+  Mesh mesh;
+  std::vector<Material> materials;
+  Vector X;
+  int twist_pilot = 0, bend_pilot = 0;
+  std::vector<std::shared_ptr<Form>> forms;
+};
+
+TorsionCell torsion_cell(const TcaSceneSpec& spec, int ring, const SolidMeshOptions& options) {
+  TorsionCell c;
+  c.mesh = mesh_tca_cell(spec.design, ring, options);
+  c.materials = tca_part_materials(spec);
+  const int n = c.mesh.num_nodes();
+  c.twist_pilot = n, c.bend_pilot = n + 1;
+  c.X = Vector::Zero(3 * (n + 2));
+  c.X.head(3 * n) = flattened_positions(c.mesh);
+  c.forms.push_back(make_elastic_form(c.mesh, c.materials, VolumetricTreatment::projected_dilatation,
+                                      hex20_integration(c.mesh, spec.integration)));
+  const auto pairs = facing_nodes(c.mesh.node_sets.at("top"), c.mesh.node_sets.at("bottom"), c.X, 1e-9);
+  std::vector<double> weights(pairs.size(), 1.0);
+  if (const auto it = c.mesh.node_sets.find("symmetry"); it != c.mesh.node_sets.end()) {
+    std::vector<char> on_plane(n, 0);
+    for (int node : it->second) on_plane[node] = 1;
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+      if (on_plane[pairs[k].second]) weights[k] = 0.5;
+  }
+  const double mu = stiffest_silicone_shear_modulus(c.mesh, c.materials);
+  c.forms.push_back(std::make_shared<PeriodicFaceForm>(pairs, c.X, c.twist_pilot, c.bend_pilot,
+                                                       kPlanePenaltyRatio * mu, weights));
+  return c;
+}
+
+/// The cell's GJ at rest on the half model y ≥ 0 (chamber 1 on the mirror plane; turning the cell
+/// about its axis leaves its torsion as it is). A twist is odd under that mirror, and so are the
+/// pilots' t_y, φ and c: the plane is held in x and z and free across it, the even pilots t_x, a and
+/// b are held, and the rigid motions left (a shift in y, turns about x and z) by the bottom face: y
+/// at the node nearest the axis and at the farthest one on the plane, z at the one farthest off it.
+/// The half model's energy is half the full model's for every odd motion (its plane's pairs at half
+/// weight), so its φ per unit torque is twice the full model's: GJ = 2 L / (dφ/dT)_half.
+double half_cell_torsion_stiffness(const TcaSceneSpec& spec, int ring) {
+  TcaSceneSpec rest = spec;
+  rest.chamber_pressure_kPa = {0, 0, 0};
+  rest.gravity_m_s2.setZero();
+  SolidMeshOptions options = solid_mesh_options(rest, choose_tca_model(rest));
+  options.half = true;
+  options.first_axis_angle_rad = 0;
+  const TorsionCell cell = torsion_cell(rest, ring, options);
+  const Mesh& mesh = cell.mesh;
+  const std::vector<int>& plane = mesh.node_sets.at("symmetry");
+  DirichletConstraints bc;
+  for (int node : plane) bc.fix(3 * node), bc.fix(3 * node + 2);
+  bc.fix(3 * cell.twist_pilot);
+  bc.fix(3 * cell.bend_pilot), bc.fix(3 * cell.bend_pilot + 1);
+  std::vector<char> on_plane(mesh.num_nodes(), 0);
+  for (int node : plane) on_plane[node] = 1;
+  const std::vector<int>& bottom = mesh.node_sets.at("bottom");
+  const auto radius = [&](int node) { return mesh.X.row(node).head<2>().norm(); };
+  int centre = -1, far = -1, off = -1;
+  for (int b : bottom) {
+    if (on_plane[b]) {
+      if (centre < 0 || radius(b) < radius(centre)) centre = b;
+      if (far < 0 || radius(b) > radius(far)) far = b;
+    } else if (off < 0 || std::abs(mesh.X(b, 1)) > std::abs(mesh.X(off, 1))) {
+      off = b;
+    }
+  }
+  if (centre < 0 || off < 0 || centre == far) return std::nan("");
+  bc.fix(3 * centre + 1), bc.fix(3 * far + 1), bc.fix(3 * off + 2);
+  EnergyProblem problem(cell.X, bc);
+  for (const auto& form : cell.forms) problem.add_form(form);
+  problem.finalize();
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.num_dofs()), ku;
+  u[3 * cell.twist_pilot + 2] = 1;
+  problem.zero_prescribed(u);
+  LinearSolver solver;
+  if (!solve_with_tangent(problem, cell.X, {}, solver, {&u}, {&ku})) return std::nan("");
+  return 2 * spec.design.actuator.pitch() / u.dot(ku);
+}
+}  // namespace
+
 std::vector<CellTorsionState> cell_torsion_along_ramp(const TcaSceneSpec& spec, int ring) {
   TcaSceneSpec full = spec;
-  full.allow_symmetry = false;  // a twist is not mirror-symmetric
+  full.allow_symmetry = false;  // a twist is not mirror-symmetric, nor the loaded cell's state in general
   full.gravity_m_s2.setZero();
-  const ModelChoice model = choose_tca_model(full);
-  const Mesh mesh = mesh_tca_cell(full.design, ring, solid_mesh_options(full, model));
-  const std::vector<Material> materials = tca_part_materials(full);
-  const int n = mesh.num_nodes(), twist_pilot = n, bend_pilot = n + 1;
-  Vector X = Vector::Zero(3 * (n + 2));
-  X.head(3 * n) = flattened_positions(mesh);
+  const TorsionCell cell = torsion_cell(full, ring, solid_mesh_options(full, choose_tca_model(full)));
+  const Mesh& mesh = cell.mesh;
   // The whole cell's rigid motions: the bottom node nearest the axis holds x, y, z; the one
   // farthest from it its tangential direction and z; the one most across from that its z.
   const std::vector<int>& bottom = mesh.node_sets.at("bottom");
@@ -287,13 +367,9 @@ std::vector<CellTorsionState> cell_torsion_along_ramp(const TcaSceneSpec& spec, 
   bc.fix(3 * far + (std::abs(f.x()) < std::abs(f.y()) ? 0 : 1));
   bc.fix(3 * far + 2);
   bc.fix(3 * across + 2);
-  EnergyProblem problem(X, bc);
-  problem.add_form(make_elastic_form(mesh, materials, VolumetricTreatment::projected_dilatation,
-                                     hex20_integration(mesh, full.integration)));
-  const double mu = stiffest_silicone_shear_modulus(mesh, materials);
-  problem.add_form(std::make_shared<PeriodicFaceForm>(facing_nodes(mesh.node_sets.at("top"), bottom, X, 1e-9), X,
-                                                      twist_pilot, bend_pilot, kPlanePenaltyRatio * mu));
-  if (full.newton.rotate_stiff_parts) problem.set_stiff_inclusions(stiff_parts(mesh, materials));
+  EnergyProblem problem(cell.X, bc);
+  for (const auto& form : cell.forms) problem.add_form(form);
+  if (full.newton.rotate_stiff_parts) problem.set_stiff_inclusions(stiff_parts(mesh, cell.materials));
   LoadState load;
   load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);
   const ChamberLoads chambers = add_chamber_loads(
@@ -304,13 +380,13 @@ std::vector<CellTorsionState> cell_torsion_along_ramp(const TcaSceneSpec& spec, 
   LinearSolver solver;  // one symbolic analysis for every state
   const auto stiffness_at = [&](const Vector& x, const ConvergedTangent& tangent) {
     Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.num_dofs()), ku;
-    u[3 * twist_pilot + 2] = 1;
+    u[3 * cell.twist_pilot + 2] = 1;
     problem.zero_prescribed(u);
     if (!solve_with_tangent(problem, x, tangent, solver, {&u}, {&ku})) return std::nan("");
     return spec.design.actuator.pitch() / u.dot(ku);
   };
   std::vector<CellTorsionState> out;
-  Vector x = X;
+  Vector x = cell.X;
   if (chambers.loaded.empty()) {
     out.push_back({0.0, stiffness_at(x, {})});
     return out;
@@ -323,6 +399,7 @@ std::vector<CellTorsionState> cell_torsion_along_ramp(const TcaSceneSpec& spec, 
 }
 
 double cell_torsion_stiffness(const TcaSceneSpec& spec, int ring) {
+  if (spec.allow_symmetry) return half_cell_torsion_stiffness(spec, ring);
   TcaSceneSpec rest = spec;
   rest.chamber_pressure_kPa = {0, 0, 0};
   return cell_torsion_along_ramp(rest, ring).front().stiffness_Nmm2;

@@ -77,10 +77,11 @@ struct CellEndLoad {
 /// mesh, chamber pressures, outputs and solver settings; spec.gravity is ignored.
 TcaCellResult run_tca_cell(const TcaSceneSpec& spec, int ring, const CellEndLoad& end_load = {});
 
-/// The cell's torsional stiffness GJ (N·mm²) at rest: the full cell about `ring` with periodic
-/// faces (periodic_face_form.hpp; warping free, the same on both), the linear twist per unit
-/// torque. This is Saint-Venant's torsion of the ringed 3CA, rings and chambers included; NaN
-/// where the tangent is not positive definite.
+/// The cell's torsional stiffness GJ (N·mm²) at rest: the cell about `ring` with periodic faces
+/// (periodic_face_form.hpp; warping free, the same on both), the linear twist per unit torque. This
+/// is Saint-Venant's torsion of the ringed 3CA, rings and chambers included; NaN where the tangent
+/// is not positive definite. On the half model with its mirror plane held as a twist's odd symmetry
+/// asks (twist_compliance.hpp), the full model where spec.allow_symmetry is off: the same GJ.
 double cell_torsion_stiffness(const TcaSceneSpec& spec, int ring);
 
 /// The same cell's GJ along the spec's pressure ramp (the periodic cell stretching and bending freely
