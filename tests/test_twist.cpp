@@ -37,7 +37,7 @@ TEST_CASE("Bonded end cells twist a short 3CA as its 3D model does, where the ce
   // Seven ring pitches of the thesis 3CA's distal section (untapered, r = 9 mm, caps 2.25 mm),
   // bonded at both ends: the top held, the bottom on a rigid connector turned about the axis.
   // The cells' GJ is Saint-Venant's (sections warping freely); the bonded faces cannot warp and
-  // the caps are solid, so the whole 3CA is stiffer. Measured (full models, level 2's layers): the
+  // the caps are solid, so the whole 3CA is stiffer. Measured (level 2's layers): the
   // 3D model 1.1471e-3 rad/(N mm); the rod on its cells' GJ alone +3.78 %; with end cells through
   // 1, 2 and 3 rings +0.92 %, +0.42 %, +0.19 %.
   const TcaSceneSpec spec = softarm::test::untapered_3ca(7, 2, 2);
