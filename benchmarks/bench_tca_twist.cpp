@@ -4,7 +4,7 @@
 //
 //   bench_tca_twist [tca or spl config] [--segment N] [--end-rings 1,2,3] [--no-3d] [--axial-level N]
 //   --segment N: an SPL config's segment N (1–3) as its cell rod sees it (spl_segment_cell_scene)
-//   --no-3d: skip the whole 3D model (a thesis segment's full model at the cells' layers is large)
+//   --no-3d: skip the whole 3D model (a thesis segment at the cells' layers is large)
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -71,7 +71,7 @@ int main(int argc, char** argv) try {
   if (whole) {
     const auto t0 = std::chrono::steady_clock::now();
     solid = fem::tca_twist_compliance(spec);
-    std::printf("3D, bonded at both ends (full model): %.6e rad/(N·mm), GJ_eff = L/C = %.1f N·mm² (%.1f s)\n", solid,
+    std::printf("3D, bonded at both ends (its antisymmetric half, or the full model with symmetry off): %.6e rad/(N·mm), GJ_eff = L/C = %.1f N·mm² (%.1f s)\n", solid,
                 spec.design.actuator.length_mm / solid, bench::seconds_since(t0));
   }
   const auto t0 = std::chrono::steady_clock::now();
