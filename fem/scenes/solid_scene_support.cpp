@@ -75,6 +75,13 @@ ChamberLoads add_chamber_loads(const Mesh& mesh, const std::vector<double>& peak
   return out;
 }
 
+std::vector<int> antisymmetric_plane_dofs(const Mesh& mesh) {
+  std::vector<int> dofs;
+  if (const auto it = mesh.node_sets.find("symmetry"); it != mesh.node_sets.end())
+    for (int n : it->second) dofs.insert(dofs.end(), {3 * n, 3 * n + 2});
+  return dofs;
+}
+
 DirichletConstraints clamped_with_symmetry(const Mesh& mesh, const std::string& clamped_set) {
   DirichletConstraints c;
   std::vector<char> clamped(mesh.num_nodes(), 0);

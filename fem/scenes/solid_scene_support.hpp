@@ -77,6 +77,12 @@ inline ElementIntegration hex20_integration(const Mesh& mesh, ElementIntegration
 constexpr double kStiffInclusionRatio = 100.0;
 StiffInclusions stiff_parts(const Mesh& mesh, const std::vector<Material>& part_materials);
 
+/// The dofs a half model holds for a motion odd under its mirror y → −y (a twist about the axis:
+/// u(x, −y, z) = −M u(x, y, z), M = diag(1, −1, 1)): on the plane such a motion has no x or z
+/// component, so the "symmetry" set's x and z dofs, its y ones free; none in a full model. The
+/// antisymmetric counterpart of a bending half model's u_y = 0.
+std::vector<int> antisymmetric_plane_dofs(const Mesh& mesh);
+
 /// The node set `clamped` fixed in all directions; the "symmetry" set (if any) keeps u_y = 0.
 DirichletConstraints clamped_with_symmetry(const Mesh& mesh, const std::string& clamped);
 

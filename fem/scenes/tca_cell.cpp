@@ -268,6 +268,7 @@ struct TorsionCell {
   std::vector<Material> materials;
   Vector X;
   int twist_pilot = 0, bend_pilot = 0;
+  std::vector<char> on_plane;  // per node: on a half model's mirror plane (all 0 in a full model)
   std::vector<std::shared_ptr<Form>> forms;
 };
 
@@ -282,13 +283,12 @@ TorsionCell torsion_cell(const TcaSceneSpec& spec, int ring, const SolidMeshOpti
   c.forms.push_back(make_elastic_form(c.mesh, c.materials, VolumetricTreatment::projected_dilatation,
                                       hex20_integration(c.mesh, spec.integration)));
   const auto pairs = facing_nodes(c.mesh.node_sets.at("top"), c.mesh.node_sets.at("bottom"), c.X, 1e-9);
+  c.on_plane.assign(n, 0);
+  if (const auto it = c.mesh.node_sets.find("symmetry"); it != c.mesh.node_sets.end())
+    for (int node : it->second) c.on_plane[node] = 1;
   std::vector<double> weights(pairs.size(), 1.0);
-  if (const auto it = c.mesh.node_sets.find("symmetry"); it != c.mesh.node_sets.end()) {
-    std::vector<char> on_plane(n, 0);
-    for (int node : it->second) on_plane[node] = 1;
-    for (std::size_t k = 0; k < pairs.size(); ++k)
-      if (on_plane[pairs[k].second]) weights[k] = 0.5;
-  }
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+    if (c.on_plane[pairs[k].second]) weights[k] = 0.5;
   const double mu = stiffest_silicone_shear_modulus(c.mesh, c.materials);
   c.forms.push_back(std::make_shared<PeriodicFaceForm>(pairs, c.X, c.twist_pilot, c.bend_pilot,
                                                        kPlanePenaltyRatio * mu, weights));
@@ -303,21 +303,15 @@ TorsionCell torsion_cell(const TcaSceneSpec& spec, int ring, const SolidMeshOpti
 /// The half model's energy is half the full model's for every odd motion (its plane's pairs at half
 /// weight), so its φ per unit torque is twice the full model's: GJ = 2 L / (dφ/dT)_half.
 double half_cell_torsion_stiffness(const TcaSceneSpec& spec, int ring) {
-  TcaSceneSpec rest = spec;
-  rest.chamber_pressure_kPa = {0, 0, 0};
-  rest.gravity_m_s2.setZero();
-  SolidMeshOptions options = solid_mesh_options(rest, choose_tca_model(rest));
-  options.half = true;
-  options.first_axis_angle_rad = 0;
-  const TorsionCell cell = torsion_cell(rest, ring, options);
+  TcaSceneSpec half = spec;
+  half.allow_symmetry = true;
+  const TorsionCell cell = torsion_cell(half, ring, tca_twist_mesh_options(half));
   const Mesh& mesh = cell.mesh;
-  const std::vector<int>& plane = mesh.node_sets.at("symmetry");
+  const std::vector<char>& on_plane = cell.on_plane;
   DirichletConstraints bc;
-  for (int node : plane) bc.fix(3 * node), bc.fix(3 * node + 2);
+  for (int dof : antisymmetric_plane_dofs(mesh)) bc.fix(dof);
   bc.fix(3 * cell.twist_pilot);
   bc.fix(3 * cell.bend_pilot), bc.fix(3 * cell.bend_pilot + 1);
-  std::vector<char> on_plane(mesh.num_nodes(), 0);
-  for (int node : plane) on_plane[node] = 1;
   const std::vector<int>& bottom = mesh.node_sets.at("bottom");
   const auto radius = [&](int node) { return mesh.X.row(node).head<2>().norm(); };
   int centre = -1, far = -1, off = -1;

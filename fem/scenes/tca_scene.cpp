@@ -45,6 +45,16 @@ std::optional<double> pressure_at_bending(const std::vector<TcaState>& s, double
   return std::nullopt;
 }
 
+SolidMeshOptions tca_twist_mesh_options(const TcaSceneSpec& spec) {
+  TcaSceneSpec rest = spec;
+  rest.gravity_m_s2.setZero();
+  rest.chamber_pressure_kPa = {0, 0, 0};
+  SolidMeshOptions options = solid_mesh_options(rest, choose_tca_model(rest));
+  options.half = spec.allow_symmetry;
+  options.first_axis_angle_rad = 0;
+  return options;
+}
+
 Mesh tca_mesh(const TcaSceneSpec& spec, const ModelChoice& model) {
   validate(spec.design);
   return mesh_tca(spec.design, solid_mesh_options(spec, model));

@@ -104,6 +104,10 @@ ModelChoice choose_tca_model(const TcaSceneSpec& spec);
 /// The mesh the scene is solved on, in the solver frame of `model` (half or full),
 /// and the material of each of its parts ("tube", "rings", "sheath").
 Mesh tca_mesh(const TcaSceneSpec& spec, const ModelChoice& model);
+/// The mesh options for spec's pieces twisted at rest: the half model y ≥ 0 with chamber 1 on its
+/// mirror plane (a twist is odd under that mirror, antisymmetric_plane_dofs; turning the geometry
+/// about its axis leaves its torsion as it is), the full model where spec.allow_symmetry is off.
+SolidMeshOptions tca_twist_mesh_options(const TcaSceneSpec& spec);
 std::vector<Material> tca_part_materials(const TcaSceneSpec& spec);
 /// The side the 3CA bends to under its chamber pressures, user frame (unnormalised; zero when
 /// no chamber or all alike are pressurised): away from them, −Σ p_k e_k with e_k chamber k's

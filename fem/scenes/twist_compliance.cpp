@@ -11,27 +11,6 @@
 
 namespace softarm::fem {
 namespace {
-/// The scene's mesh options for a twist at rest: the half model y ≥ 0 with chamber 1 on the mirror
-/// plane (turning the geometry about the axis leaves its torsion as it is), unless the config turned
-/// symmetry off; then the full model.
-SolidMeshOptions twist_model_options(const TcaSceneSpec& spec) {
-  TcaSceneSpec rest = spec;
-  rest.gravity_m_s2.setZero();
-  rest.chamber_pressure_kPa = {0, 0, 0};
-  SolidMeshOptions options = solid_mesh_options(rest, choose_tca_model(rest));
-  options.half = spec.allow_symmetry;
-  options.first_axis_angle_rad = 0;
-  return options;
-}
-
-/// A twist is odd under the mirror y → −y (u(x, −y, z) = −M u(x, y, z), M = diag(1, −1, 1)), so on the
-/// mirror plane it has no x or z component: a half model's plane is held in x and z and free across
-/// it, the antisymmetric counterpart of a bending half model's support.
-void hold_antisymmetric_plane(const Mesh& mesh, std::vector<char>& prescribed) {
-  if (const auto it = mesh.node_sets.find("symmetry"); it != mesh.node_sets.end())
-    for (int n : it->second) prescribed[3 * n] = prescribed[3 * n + 2] = 1;
-}
-
 /// K with the rows and columns of the prescribed dofs replaced by the identity's.
 SparseMatrix with_identity_at(SparseMatrix K, const std::vector<char>& prescribed) {
   for (int k = 0; k < K.outerSize(); ++k)
@@ -60,7 +39,7 @@ double face_twist_compliance(const Mesh& mesh, const std::vector<Material>& part
     prescribed[3 * n] = prescribed[3 * n + 1] = 1;
     if (twisted_face == TwistedFace::warping_held) prescribed[3 * n + 2] = 1;
   }
-  hold_antisymmetric_plane(mesh, prescribed);
+  for (int dof : antisymmetric_plane_dofs(mesh)) prescribed[dof] = 1;
   EnergyProblem unsupported(X, {});
   unsupported.add_form(make_elastic_form(mesh, part_materials, VolumetricTreatment::projected_dilatation,
                                          hex20_integration(mesh, integration)));
@@ -85,7 +64,7 @@ double face_twist_compliance(const Mesh& mesh, const std::vector<Material>& part
 
 double end_cell_twist_compliance(const TcaSceneSpec& spec, TcaEnd end, int rings) {
   validate(spec.design);
-  const Mesh mesh = mesh_tca_end(spec.design, end, rings, twist_model_options(spec));
+  const Mesh mesh = mesh_tca_end(spec.design, end, rings, tca_twist_mesh_options(spec));
   const bool top = end == TcaEnd::top;
   return face_twist_compliance(mesh, tca_part_materials(spec), spec.integration, top ? "top" : "bottom",
                                top ? "bottom" : "top", TwistedFace::warping_free);
@@ -124,7 +103,7 @@ std::vector<double> tca_rod_twist_compliances(const TcaSceneSpec& spec, const st
 
 double tca_twist_compliance(const TcaSceneSpec& spec) {
   validate(spec.design);
-  const Mesh mesh = mesh_tca(spec.design, twist_model_options(spec));
+  const Mesh mesh = mesh_tca(spec.design, tca_twist_mesh_options(spec));
   return face_twist_compliance(mesh, tca_part_materials(spec), spec.integration, "top", "bottom",
                                TwistedFace::warping_held);
 }
