@@ -296,6 +296,56 @@ TEST_CASE("the predictor's parabola reproduces a quadratic path and the secant a
   CHECK((secant - path(0.55) + (0.55 - 0.35) * (0.55 - 0.4) * c).norm() < 1e-12 * path(0.55).norm());
 }
 
+TEST_CASE("the predictor's cubic with the path's slope reproduces a cubic path, and beats the parabola on a smooth one", "[solver]") {
+  // x(λ) = a + bλ + cλ² + dλ³ at three unequal levels with its slope at the last: exact for the cubic.
+  const Vector a = Vector::LinSpaced(5, 1.0, 2.0), b = Vector::LinSpaced(5, -3.0, 4.0), c = Vector::LinSpaced(5, 0.5, 9.0),
+               d = Vector::LinSpaced(5, -7.0, 2.5);
+  const auto path = [&](double l) -> Vector { return a + l * b + l * l * c + l * l * l * d; };
+  const auto slope = [&](double l) -> Vector { return b + 2 * l * c + 3 * l * l * d; };
+  const Vector x0 = path(0.2), x1 = path(0.35), x2 = path(0.4);
+  const Vector cubic = extrapolate_with_slope({0.2, 0.35, 0.4}, {&x0, &x1, &x2}, slope(0.4), 0.55);
+  CHECK((cubic - path(0.55)).norm() < 1e-12 * path(0.55).norm());
+  // On x(λ) = exp(kλ) (componentwise k), a smooth path no polynomial matches, with steps h: the
+  // parabola's error falls as h³, the cubic's as h⁴, and the cubic is the closer at every h here.
+  const Vector k = Vector::LinSpaced(5, 0.5, 3.0);
+  const auto smooth = [&](double l) -> Vector { return (k * l).array().exp().matrix(); };
+  const auto smooth_slope = [&](double l) -> Vector { return k.cwiseProduct(smooth(l)); };
+  double last_parabola = 0, last_cubic = 0;
+  for (const double h : {0.1, 0.05}) {
+    const Vector y0 = smooth(0.5 - 2 * h), y1 = smooth(0.5 - h), y2 = smooth(0.5), exact = smooth(0.5 + h);
+    const double parabola_error = (extrapolate_state({0.5 - 2 * h, 0.5 - h, 0.5}, {&y0, &y1, &y2}, 0.5 + h) - exact).norm();
+    const double cubic_error = (extrapolate_with_slope({0.5 - 2 * h, 0.5 - h, 0.5}, {&y0, &y1, &y2}, smooth_slope(0.5), 0.5 + h) - exact).norm();
+    INFO("h = " << h << ": parabola " << parabola_error << ", cubic " << cubic_error);
+    CHECK(cubic_error < 0.5 * parabola_error);
+    if (last_parabola > 0) {
+      CHECK(last_parabola / parabola_error == Approx(8).epsilon(0.15));  // h³
+      CHECK(last_cubic / cubic_error == Approx(16).epsilon(0.15));       // h⁴
+    }
+    last_parabola = parabola_error, last_cubic = cubic_error;
+  }
+}
+
+TEST_CASE("the predictor takes the cubic only where it agrees with the parabola", "[solver]") {
+  // The same cubic path: the cubic and the parabola's predictions differ by d(λ−l0)(λ−l1)(λ−l2)-ish
+  // terms, small against the step from x2 for a small d. A slope far from the path's (as where K is
+  // nearly singular, next to a limit point) makes the cubic disagree by more than 10 % of the
+  // parabola's step: the parabola is returned, bit for bit.
+  const Vector a = Vector::LinSpaced(5, 1.0, 2.0), b = Vector::LinSpaced(5, -3.0, 4.0), c = Vector::LinSpaced(5, 0.5, 9.0),
+               d = Vector::Constant(5, 0.01);
+  const auto path = [&](double l) -> Vector { return a + l * b + l * l * c + l * l * l * d; };
+  const Vector x0 = path(0.2), x1 = path(0.35), x2 = path(0.4);
+  const Vector true_slope = b + 0.8 * c + 0.48 * d;
+  const Vector parabola = extrapolate_state({0.2, 0.35, 0.4}, {&x0, &x1, &x2}, 0.55);
+  const Vector taken = predict_with_slope({0.2, 0.35, 0.4}, {&x0, &x1, &x2}, true_slope, 0.55);
+  CHECK((taken - path(0.55)).norm() < 1e-12 * path(0.55).norm());  // the cubic, exact
+  CHECK((taken - parabola).norm() > 0);
+  const Vector refused = predict_with_slope({0.2, 0.35, 0.4}, {&x0, &x1, &x2}, 50 * true_slope, 0.55);
+  CHECK(refused == parabola);
+  Vector not_finite = true_slope;
+  not_finite[2] = std::nan("");
+  CHECK(predict_with_slope({0.2, 0.35, 0.4}, {&x0, &x1, &x2}, not_finite, 0.55) == parabola);
+}
+
 TEST_CASE("load stepper cuts back after a failure and still reaches the end", "[solver]") {
   Compression c(0.4);
   Vector x = c.problem->reference_positions();

@@ -38,9 +38,11 @@ struct LoadedVolume {
 // that of the iterate before x (1e-5 of the displacement away where Newton stops on its
 // contraction), and where Newton reuses factors (NewtonSettings::reuse_factor) several states
 // old: K⁻¹∇V is solved with K by CG on that factor, or, where CG fails, from K's own
-// factorisation. Without K (tangent_at_x null) the last factorisation serves as it is.
+// factorisation. Without K (tangent_at_x null) the last factorisation serves as it is. With
+// `compliance_out`, K⁻¹∇V as well (zero at prescribed dofs): the path's slope dx/dλ is p_max times it.
 double pv_stiffness(const EnergyProblem& problem, const LoadedVolume& chamber, LinearSolver& solver,
-                    const Vector& x, const NewtonSettings& newton, const SparseMatrix* tangent_at_x) {
+                    const Vector& x, const NewtonSettings& newton, const SparseMatrix* tangent_at_x,
+                    Vector* compliance_out = nullptr) {
   Vector g = chamber.gradient(x);
   problem.zero_prescribed(g);
   Vector compliance;
@@ -51,6 +53,7 @@ double pv_stiffness(const EnergyProblem& problem, const LoadedVolume& chamber, L
     compliance = solver.solve(g);
   }
   const double compliance_mm3_per_MPa = g.dot(compliance);
+  if (compliance_out) *compliance_out = std::move(compliance);
   // A singular tangent (no solve): the chamber has lost its stiffness, dp/dV = 0 (a limit point).
   if (!std::isfinite(compliance_mm3_per_MPa)) return 0.0;
   return 1e3 / compliance_mm3_per_MPa;  // MPa → kPa
@@ -447,20 +450,25 @@ void follow_pressure(const PathContext& c, Vector& x, const PathStart& start, st
   recent.emplace_back(start.level, x);
   PathCallbacks callbacks;
   std::pair<double, const Vector*> converged{0.0, nullptr};  // the state on_converged was last given
+  // dx/dλ there: the load is λ p_max Σ f_i V_i, so K dx/dλ = p_max ∇V (empty where K⁻¹∇V is not finite).
+  Vector slope;
   callbacks.apply_load = [&](double level) {
     c.set_pressures(level);
     c.load.dirichlet_scale = level;
   };
   callbacks.on_converged = [&](double level, const Vector& xs, bool is_output, const NewtonReport& report) {
     PressureState s{level * c.spec.max_pressure_kPa, c.chamber.volume(xs),
-                    pv_stiffness(c.problem, c.chamber, c.solver, xs, c.spec.newton, &report.last.hessian),
+                    pv_stiffness(c.problem, c.chamber, c.solver, xs, c.spec.newton, &report.last.hessian, &slope),
                     report.tangent_positive_definite, report.iterations, is_output};
+    if (slope.allFinite()) slope *= c.spec.max_pressure_kPa * kMPaPerKPa;
+    else slope.resize(0);
     out.history.push_back(s);
     if (c.on_state) c.on_state(s, xs, converged_tangent(c, report.last.hessian));
     converged = {level, &xs};
     recent.emplace_back(level, xs);
     if (recent.size() > 3) recent.erase(recent.begin());
   };
+  callbacks.slope = [&slope] { return slope; };
   if (hand_over != HandOver::never)
     callbacks.stop_before = [&, hand_over](double next_level, const PathStatistics& stats) {
       const std::size_t n = out.history.size();

@@ -33,6 +33,28 @@ Vector extrapolate_state(const std::vector<double>& levels, const std::vector<co
   return x;
 }
 
+Vector extrapolate_with_slope(const std::array<double, 3>& levels, const std::array<const Vector*, 3>& states,
+                              const Vector& slope, double target) {
+  // With s measured from l2, the residues R_i = x_i − x2 − t2 s_i (i = 0, 1) are a s_i² + b s_i³:
+  // two equations for a and b, the same 2×2 system for every component.
+  const double s0 = levels[0] - levels[2], s1 = levels[1] - levels[2], s = target - levels[2];
+  const Vector& x2 = *states[2];
+  const Vector R0 = *states[0] - x2 - s0 * slope, R1 = *states[1] - x2 - s1 * slope;
+  const double det = s0 * s0 * s1 * s1 * (s1 - s0);
+  const Vector a = (s1 * s1 * s1 * R0 - s0 * s0 * s0 * R1) / det;
+  const Vector b = (s0 * s0 * R1 - s1 * s1 * R0) / det;
+  return x2 + s * slope + (s * s) * a + (s * s * s) * b;
+}
+
+Vector predict_with_slope(const std::array<double, 3>& levels, const std::array<const Vector*, 3>& states,
+                          const Vector& slope, double target) {
+  Vector parabola = extrapolate_state({levels[0], levels[1], levels[2]}, {states[0], states[1], states[2]}, target);
+  Vector cubic = extrapolate_with_slope(levels, states, slope, target);
+  if (cubic.allFinite() && (cubic - parabola).norm() <= kSlopePredictorAgreement * (parabola - *states[2]).norm())
+    return cubic;
+  return parabola;
+}
+
 namespace {
 constexpr double kLandingTolerance = 1e-12;
 constexpr double kNoCeiling = std::numeric_limits<double>::infinity();
@@ -75,7 +97,7 @@ class PathFollower {
     return next;
   }
 
-  /// One step to `next`: with the secant (or quadratic) predictor first, then, if that fails and a
+  /// One step to `next`: with the predictor (secant, parabola, or the cubic with the path's slope) first, then, if that fails and a
   /// predictor was used, from the last converged state.
   bool try_step(double next, bool lands) {
     for (int attempt = 0; attempt < 2; ++attempt) {
@@ -134,6 +156,7 @@ class PathFollower {
   PathResult& result_;
   double level_, previous_level_, older_level_;
   Vector previous_x_, older_x_;
+  Vector slope_;  // dx/dλ at x_ where the caller gives it (PathCallbacks::slope), else empty
   int history_ = 0;  // converged states before x that the predictor may use (0, 1 or 2)
   double increment_ = 0;
   double ceiling_ = kNoCeiling;
@@ -142,6 +165,8 @@ class PathFollower {
   std::size_t landed_ = 0;
 
   Vector predicted(double next) const {
+    if (history_ >= 2 && previous_level_ > older_level_ && slope_.size() == x_.size())
+      return predict_with_slope({older_level_, previous_level_, level_}, {&older_x_, &previous_x_, &x_}, slope_, next);
     if (history_ >= 2 && previous_level_ > older_level_)
       return extrapolate_state({older_level_, previous_level_, level_}, {&older_x_, &previous_x_, &x_}, next);
     return extrapolate_state({previous_level_, level_}, {&previous_x_, &x_}, next);
@@ -160,6 +185,7 @@ class PathFollower {
     result_.reached_level = level_;
     if (lands) ++landed_;
     if (callbacks_.on_converged) callbacks_.on_converged(level_, x_, lands, report);
+    slope_ = callbacks_.slope ? callbacks_.slope() : Vector();
     if (report.iterations <= settings_.easy_iterations)
       increment_ = std::min(increment_ * settings_.growth, settings_.max_increment);
     if (report.iterations >= settings_.hard_iterations) increment_ *= settings_.shrink;
