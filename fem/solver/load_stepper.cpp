@@ -97,8 +97,8 @@ class PathFollower {
     return next;
   }
 
-  /// One step to `next`: with the predictor (secant, parabola, or the cubic with the path's slope) first, then, if that fails and a
-  /// predictor was used, from the last converged state.
+  /// One step to `next`: from the predicted state first (secant, parabola, or the cubic with the
+  /// path's slope), then, if that fails and a predictor was used, from the last converged state.
   bool try_step(double next, bool lands) {
     for (int attempt = 0; attempt < 2; ++attempt) {
       const bool predict = attempt == 0 && history_ >= 1 && level_ > previous_level_;

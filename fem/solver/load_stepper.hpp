@@ -4,7 +4,8 @@
 // after easy convergence, shrinks it after hard convergence, and on any typed
 // failure restores the last converged state and cuts the step back. The
 // predictor extrapolates the last three converged states (a parabola in λ; the
-// secant through two at the start of the path); if Newton fails
+// secant through two at the start of the path), with the path's slope where the
+// caller gives it (a cubic, taken where it agrees with the parabola); if Newton fails
 // from the predicted state the step is retried from the last state, except after
 // an unstable branch (only indefinite tangents: no equilibrium near that load),
 // after which the steps halve their distance to that level instead of trying it again
