@@ -165,10 +165,11 @@ class PathFollower {
   std::size_t landed_ = 0;
 
   Vector predicted(double next) const {
-    if (history_ >= 2 && previous_level_ > older_level_ && slope_.size() == x_.size())
-      return predict_with_slope({older_level_, previous_level_, level_}, {&older_x_, &previous_x_, &x_}, slope_, next);
-    if (history_ >= 2 && previous_level_ > older_level_)
+    if (history_ >= 2 && previous_level_ > older_level_) {
+      if (slope_.size() == x_.size())
+        return predict_with_slope({older_level_, previous_level_, level_}, {&older_x_, &previous_x_, &x_}, slope_, next);
       return extrapolate_state({older_level_, previous_level_, level_}, {&older_x_, &previous_x_, &x_}, next);
+    }
     return extrapolate_state({previous_level_, level_}, {&previous_x_, &x_}, next);
   }
 
