@@ -450,7 +450,8 @@ void follow_pressure(const PathContext& c, Vector& x, const PathStart& start, st
   recent.emplace_back(start.level, x);
   PathCallbacks callbacks;
   std::pair<double, const Vector*> converged{0.0, nullptr};  // the state on_converged was last given
-  // dx/dλ there: the load is λ p_max Σ f_i V_i, so K dx/dλ = p_max ∇V (empty where K⁻¹∇V is not finite).
+  // dx/dλ there: the load is λ p_max Σ f_i V_i, so K dx/dλ = p_max ∇V (not finite where K is singular,
+  // and then the predictor takes its parabola: predict_with_slope).
   Vector slope;
   callbacks.apply_load = [&](double level) {
     c.set_pressures(level);
@@ -460,8 +461,7 @@ void follow_pressure(const PathContext& c, Vector& x, const PathStart& start, st
     PressureState s{level * c.spec.max_pressure_kPa, c.chamber.volume(xs),
                     pv_stiffness(c.problem, c.chamber, c.solver, xs, c.spec.newton, &report.last.hessian, &slope),
                     report.tangent_positive_definite, report.iterations, is_output};
-    if (slope.allFinite()) slope *= c.spec.max_pressure_kPa * kMPaPerKPa;
-    else slope.resize(0);
+    slope *= c.spec.max_pressure_kPa * kMPaPerKPa;
     out.history.push_back(s);
     if (c.on_state) c.on_state(s, xs, converged_tangent(c, report.last.hessian));
     converged = {level, &xs};
