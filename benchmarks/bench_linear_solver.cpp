@@ -68,13 +68,11 @@ struct Config {
 std::vector<Config> all_configs() {
   using M = Options::Mode;
   using O = Options::Ordering;
-  using T = Options::Triangle;
-  auto make = [](M mode, O ordering, bool postorder = true, T triangle = T::automatic) {
+  auto make = [](M mode, O ordering, bool postorder = true) {
     Options o;
     o.mode = mode;
     o.ordering = ordering;
     o.postorder = postorder;
-    o.triangle = triangle;
     return o;
   };
   return {
@@ -87,8 +85,6 @@ std::vector<Config> all_configs() {
       {"super-nesdis", make(M::supernodal, O::nesdis)},
       {"super-all", make(M::supernodal, O::best_of_all)},
       {"super-nopost", make(M::supernodal, O::cholmod_default, false)},
-      {"super-lower", make(M::supernodal, O::cholmod_default, true, T::lower)},
-      {"simplicial-upper", make(M::simplicial, O::cholmod_default, true, T::upper)},
       {"auto-metis", make(M::automatic, O::metis)},
       {"auto-amd", make(M::automatic, O::amd)},
       {"super-double-cg", [&] {

@@ -71,13 +71,9 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 //    saves 3.5 % of the flops for a 5.4 s analysis instead of 1.0 s: not worth it.
 //  - postorder on (off: 4.6 s vs 3.0 s). Relaxed amalgamation nrelax {8, 32, 96}:
 //    no gain (61k: 2.97 vs 3.17 s, 109k: 7.76 vs 7.13 s, serial OpenBLAS, 2 pinned cores).
-//  - the triangle (Options::Triangle): the supernodal factorisation reads tril(PKPᵀ), one
-//    permuted transposition of K's upper triangle, two of its lower one; the simplicial one
-//    reads triu(PKPᵀ), the other way round. Measured (configs super, super-lower, serial
-//    OpenBLAS, alternating runs, medians of 5): 19,683 dofs 0.121-0.123 s from the upper
-//    triangle against 0.132-0.134 s from the lower, 61,347 dofs 0.772-0.776 against
-//    0.806-0.810 s, and CHOLMOD's memory 92 against 108 MiB, 396 against 448 MiB. (An
-//    earlier, threaded measurement found the upper one slower; it did not repeat.)
+//  - the triangle CHOLMOD reads, tril(PKPᵀ) for the supernodal factor and triu(PKPᵀ) for the
+//    simplicial one, gathered from K's columns (permuted_triangle.hpp) instead of transposed by
+//    CHOLMOD from one of K's triangles at every factorisation.
 // What matters is the BLAS behind libblas.so.3/liblapack.so.3 (scripts/setup.sh installs
 // libopenblas0-pthread): at 61k dofs reference BLAS 36.8 s, OpenBLAS serial 3.0 s (this
 // 2-core machine, loaded); on 2 pinned cores of an idle Xeon, serial vs pthread OpenBLAS:
@@ -111,6 +107,7 @@ void LinearSolver::configure() {
 }
 
 void LinearSolver::Cholesky::adopt_analysis(cholmod_factor* symbolic) {
+  permuted = {};
   if (this->m_cholmodFactor) cholmod_free_factor(&this->m_cholmodFactor, &this->cholmod());
   this->m_cholmodFactor = symbolic;
   this->m_isInitialized = true;
@@ -141,27 +138,34 @@ void LinearSolver::analyse(const SparseMatrix& K) {
     return;
   }
   c.analyzePattern(K);
+  c.permuted = {};
   factor_flops = c.cholmod().fl;
   factor_nonzeros = c.cholmod().lnz;
   if (options_.share_analysis && c.factor()) keep_analysis(key, *c.factor(), factor_flops, factor_nonzeros);
 }
 
-// As Eigen's CholmodBase::factorize, with the triangle chosen per call: CHOLMOD's analysis
-// orders the pattern of K + Kᵀ whichever triangle it was given, so one analysis serves both.
-void LinearSolver::Cholesky::factorize_from(const SparseMatrix& K, bool upper) {
+// As Eigen's CholmodBase::factorize, but CHOLMOD is handed the triangle of P K Pᵀ it would make
+// itself (permuted_triangle.hpp), with the factor's ordering marked natural for the call so that it
+// reads that triangle as it is; marked back after, since the solves permute b and x by L's
+// permutation unless the ordering is natural.
+void LinearSolver::Cholesky::factorize_from(const SparseMatrix& K) {
   eigen_assert(this->m_analysisIsOk && "analyzePattern first");
-  cholmod_sparse A = upper ? Eigen::viewAsCholmod(K.selfadjointView<Eigen::Upper>())
-                           : Eigen::viewAsCholmod(K.selfadjointView<Eigen::Lower>());
-  cholmod_factorize_p(&A, this->m_shiftOffset, nullptr, 0, this->m_cholmodFactor, &this->cholmod());
+  if (!K.isCompressed()) {  // the gather reads each column from its start to the next one's
+    SparseMatrix compressed = K;
+    compressed.makeCompressed();
+    return factorize_from(compressed);
+  }
+  cholmod_factor* L = this->m_cholmodFactor;
+  if (permuted.empty() || !permuted.fits(K))
+    permuted = PermutedTriangle(K, static_cast<const int*>(L->Perm), L->is_super);
+  cholmod_sparse A = permuted.gather(K);
+  const int ordering = L->ordering;
+  L->ordering = CHOLMOD_NATURAL;
+  cholmod_factorize_p(&A, this->m_shiftOffset, nullptr, 0, L, &this->cholmod());
+  L->ordering = ordering;
   // On success CHOLMOD's minor is n; on failure the column where the factorisation stopped.
   this->m_info = this->m_cholmodFactor->minor == this->m_cholmodFactor->n ? Eigen::Success : Eigen::NumericalIssue;
   this->m_factorizationIsOk = true;
-}
-
-bool LinearSolver::upper_triangle() const {
-  using Triangle = Options::Triangle;
-  if (options_.triangle != Triangle::automatic) return options_.triangle == Triangle::upper;
-  return supernodal;
 }
 
 bool LinearSolver::cholesky_factorize(const SparseMatrix& K) {
@@ -175,7 +179,7 @@ bool LinearSolver::cholesky_factorize(const SparseMatrix& K) {
   }
   const auto t0 = std::chrono::steady_clock::now();
   single_current_ = false;
-  c.factorize_from(K, upper_triangle());
+  c.factorize_from(K);
   factorize_seconds += seconds_since(t0);
   cholmod_peak_bytes = static_cast<double>(c.cholmod().memory_usage);
   return c.info() == Eigen::Success;

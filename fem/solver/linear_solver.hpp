@@ -19,6 +19,7 @@
 #include <memory>
 
 #include "fem/sparse/sparse_pattern.hpp"
+#include "fem/solver/permuted_triangle.hpp"
 #include "fem/solver/preconditioned_cg.hpp"
 #include "fem/solver/single_precision_factor.hpp"
 
@@ -39,13 +40,6 @@ class LinearSolver {
     Mode mode = Mode::automatic;
     Ordering ordering = Ordering::cholmod_default;
     bool postorder = true;
-    /// The triangle of K handed to CHOLMOD. It copies K permuted into the triangle its factorisation
-    /// reads: one transposition from the lower triangle for the simplicial LLᵀ, from the upper one for the
-    /// supernodal (two from the other). The same factor to rounding (K is symmetric to rounding, and the
-    /// entries of a column may come in another order). automatic: the one-transposition triangle for the
-    /// factor CHOLMOD chose (linear_solver.cpp).
-    enum class Triangle { automatic, lower, upper };
-    Triangle triangle = Triangle::automatic;
     double supernodal_switch = 40.0;  // CHOLMOD's flops/nnz(L) threshold for automatic mode
     bool large_supernodes = false;    // relaxed amalgamation nrelax {8, 32, 96}, zrelax {0.8, 0.2, 0.1}
     /// CG iterations solve_reusing_factor may spend; 0: as many as cost half a factorisation
@@ -62,7 +56,8 @@ class LinearSolver {
 
   LinearSolver() : LinearSolver(Options{}) {}
   explicit LinearSolver(const Options& options);
-  /// Factorises K (same pattern every call). Returns positive_definite when
+  /// Factorises K (symmetric, both triangles stored, as the assembly makes it; the same pattern every
+  /// call: permuted_triangle.hpp reads each column in full). Returns positive_definite when
   /// Cholesky succeeded, indefinite when LU was needed and succeeded, singular otherwise.
   Status factorize(const SparseMatrix& K);
   /// As factorize, but an indefinite K is replaced by K + σI, σ = s·d̄ for
@@ -110,10 +105,11 @@ class LinearSolver {
   /// (made at the first CG after each factorisation), else the factor itself.
   Eigen::VectorXd precondition(const Eigen::VectorXd& r);
 
-  /// Eigen's CHOLMOD wrapper (analysed on K's lower triangle) that also factorises from the upper one.
+  /// Eigen's CHOLMOD wrapper (analysed on K's lower triangle) that factorises from P K Pᵀ's triangle.
   struct Cholesky : Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> {
     const cholmod_factor* factor() const { return this->m_cholmodFactor; }
-    void factorize_from(const SparseMatrix& K, bool upper);
+    void factorize_from(const SparseMatrix& K);
+    PermutedTriangle permuted;  // of the analysis's pattern and permutation, made at the first factorisation
     /// Takes `symbolic` (an analysis of K's pattern, allocated in this solver's workspace) as its own,
     /// as analyzePattern would have made it.
     void adopt_analysis(cholmod_factor* symbolic);
@@ -121,7 +117,6 @@ class LinearSolver {
   /// CHOLMOD's analysis of K's pattern, or the copy of one made before in this process for the same
   /// pattern and settings (symbolic_analysis_cache.hpp).
   void analyse(const SparseMatrix& K);
-  bool upper_triangle() const;  // the triangle cholesky_factorize hands CHOLMOD (Options::Triangle)
   Options options_;
   Cholesky cholesky_;
   Eigen::UmfPackLU<SparseMatrix> lu_;
