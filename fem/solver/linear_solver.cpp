@@ -163,6 +163,7 @@ void LinearSolver::Cholesky::factorize_from(const SparseMatrix& K) {
   L->ordering = CHOLMOD_NATURAL;
   cholmod_factorize_p(&A, this->m_shiftOffset, nullptr, 0, L, &this->cholmod());
   L->ordering = ordering;
+  permuted.release_values();
   // On success CHOLMOD's minor is n; on failure the column where the factorisation stopped.
   this->m_info = this->m_cholmodFactor->minor == this->m_cholmodFactor->n ? Eigen::Success : Eigen::NumericalIssue;
   this->m_factorizationIsOk = true;

@@ -20,6 +20,9 @@ PermutedTriangle::PermutedTriangle(const SparseMatrix& K, const int* perm, bool 
   // Column j of the triangle is column perm[j] of K, stored in full, less the rows on the other side
   // of the diagonal, sorted by their new numbers: each column is read from one stretch of K.
   column_starts_.assign(n_ + 1, 0);
+  const std::size_t entries = (static_cast<std::size_t>(K.nonZeros()) + n_) / 2;  // a symmetric pattern's
+  rows_.reserve(entries);
+  sources_.reserve(entries);
   std::vector<std::pair<int, int>> column;  // (new row, position in K)
   for (int j = 0; j < n_; ++j) {
     const int c = perm[j];
@@ -32,7 +35,8 @@ PermutedTriangle::PermutedTriangle(const SparseMatrix& K, const int* perm, bool 
     for (const auto& [i, k] : column) rows_.push_back(i), sources_.push_back(k);
     column_starts_[j + 1] = static_cast<int>(rows_.size());
   }
-  values_.resize(rows_.size());
+  rows_.shrink_to_fit();  // no-ops where the pattern is symmetric, as K's is
+  sources_.shrink_to_fit();
 }
 
 bool PermutedTriangle::fits(const SparseMatrix& K) const {
@@ -41,6 +45,7 @@ bool PermutedTriangle::fits(const SparseMatrix& K) const {
 
 cholmod_sparse PermutedTriangle::gather(const SparseMatrix& K) {
   const double* from = K.valuePtr();
+  values_.resize(sources_.size());
   for (std::size_t k = 0; k < sources_.size(); ++k) values_[k] = from[sources_[k]];
   cholmod_sparse A{};
   A.nrow = A.ncol = static_cast<std::size_t>(n_);

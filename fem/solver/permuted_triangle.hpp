@@ -27,8 +27,12 @@ class PermutedTriangle {
   /// Whether K has the pattern's size and entry count (that it has the pattern itself, the caller
   /// knows: a solver's matrices share the pattern its analysis was made for).
   bool fits(const SparseMatrix& K) const;
-  /// CHOLMOD's view of the triangle holding K's values, valid until the next call.
+  /// CHOLMOD's view of the triangle holding K's values, valid until release_values.
   cholmod_sparse gather(const SparseMatrix& K);
+  /// Frees the values (half the triangle's bytes) between factorisations: a solver lives as long
+  /// as its path, and the positions it keeps already add to the cells' peak memory
+  /// (docs/performance.md, "The permuted triangle gathered, not transposed").
+  void release_values() { values_ = {}; }
 
  private:
   int n_ = 0;
