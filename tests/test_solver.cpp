@@ -713,6 +713,7 @@ TEST_CASE("The triangle of PKPᵀ CHOLMOD factorises is gathered from K's column
     CHECK(entries == (PKP.nonZeros() + n) / 2);
   }
   CHECK(!PermutedTriangle(K, perm.data(), true).fits(SparseMatrix(n + 1, n + 1)));
+  CHECK(!PermutedTriangle().fits(K));  // a solver's first factorisation makes the positions
 }
 
 TEST_CASE("CHOLMOD on the gathered triangle solves K as a separate factorisation does, shifted or not", "[solver]") {

@@ -107,7 +107,6 @@ void LinearSolver::configure() {
 }
 
 void LinearSolver::Cholesky::adopt_analysis(cholmod_factor* symbolic) {
-  permuted = {};
   if (this->m_cholmodFactor) cholmod_free_factor(&this->m_cholmodFactor, &this->cholmod());
   this->m_cholmodFactor = symbolic;
   this->m_isInitialized = true;
@@ -126,6 +125,7 @@ void LinearSolver::analyse(const SparseMatrix& K) {
   // analysis (0.07 s a cell) of waiting at most; a second solver of the pattern then finds it kept.
   static std::mutex metis;
   const std::lock_guard<std::mutex> one_at_a_time(metis);
+  c.permuted = {};  // its positions follow the permutation this analysis gives
   const PatternKey key =
       pattern_key(K, {static_cast<int>(options_.mode), static_cast<int>(options_.ordering), options_.postorder,
                       options_.large_supernodes, options_.supernodal_switch});
@@ -138,7 +138,6 @@ void LinearSolver::analyse(const SparseMatrix& K) {
     return;
   }
   c.analyzePattern(K);
-  c.permuted = {};
   factor_flops = c.cholmod().fl;
   factor_nonzeros = c.cholmod().lnz;
   if (options_.share_analysis && c.factor()) keep_analysis(key, *c.factor(), factor_flops, factor_nonzeros);
@@ -156,7 +155,7 @@ void LinearSolver::Cholesky::factorize_from(const SparseMatrix& K) {
     return factorize_from(compressed);
   }
   cholmod_factor* L = this->m_cholmodFactor;
-  if (permuted.empty() || !permuted.fits(K))
+  if (!permuted.fits(K))
     permuted = PermutedTriangle(K, static_cast<const int*>(L->Perm), L->is_super);
   cholmod_sparse A = permuted.gather(K);
   const int ordering = L->ordering;

@@ -1,19 +1,13 @@
 #include "fem/solver/permuted_triangle.hpp"
 
 #include <algorithm>
-#include <numeric>
 #include <utility>
 
 namespace softarm::fem {
 
 PermutedTriangle::PermutedTriangle(const SparseMatrix& K, const int* perm, bool to_lower)
     : n_(static_cast<int>(K.cols())), nonzeros_of_K_(static_cast<long>(K.nonZeros())), to_lower_(to_lower) {
-  std::vector<int> identity, inverse(n_);
-  if (!perm) {
-    identity.resize(n_);
-    std::iota(identity.begin(), identity.end(), 0);
-    perm = identity.data();
-  }
+  std::vector<int> inverse(n_);
   for (int i = 0; i < n_; ++i) inverse[perm[i]] = i;
   const int* outer = K.outerIndexPtr();
   const int* inner = K.innerIndexPtr();

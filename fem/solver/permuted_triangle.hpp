@@ -20,11 +20,11 @@ class PermutedTriangle {
   PermutedTriangle() = default;
   /// For K's pattern (full symmetric storage, exactly symmetric values: the assembly adds each
   /// element's symmetric matrix to both triangles alike) and a permutation (row i of P K Pᵀ is row
-  /// perm[i] of K; null: the identity): P K Pᵀ's lower triangle (`to_lower`) or upper one.
+  /// perm[i] of K, as CHOLMOD's analysis gives it): P K Pᵀ's lower triangle (`to_lower`) or upper one.
   PermutedTriangle(const SparseMatrix& K, const int* perm, bool to_lower);
 
-  bool empty() const { return rows_.empty(); }
-  /// Whether K has the pattern's size and entry count (that it has the pattern itself, the caller
+  /// Whether K has the pattern's size and entry count (never true of a default-made one for a K with
+  /// unknowns) (that it has the pattern itself, the caller
   /// knows: a solver's matrices share the pattern its analysis was made for).
   bool fits(const SparseMatrix& K) const;
   /// CHOLMOD's view of the triangle holding K's values, valid until release_values.
