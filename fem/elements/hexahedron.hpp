@@ -24,6 +24,8 @@
 #include <Eigen/LU>
 #include <array>
 
+#include "fem/elements/hex_btdb_kernel.hpp"
+
 namespace softarm::fem::hex {
 
 using Mat3 = Eigen::Matrix3d;
@@ -222,70 +224,14 @@ void add_Bt_times(const ReferencePoint<E>& p, const Eigen::Matrix<double, kActiv
       out[3 * a + i] += s * (p.dN_dX(a, 0) * v[3 * i] + p.dN_dX(a, 1) * v[3 * i + 1] + p.dN_dX(a, 2) * v[3 * i + 2]);
 }
 
-namespace detail {
-/// The body of add_BtDB_upper on raw arrays: DB = D B (9 × 3n, row-major), then for each row r of
-/// K (row-major, 3n × 3n), K(r, c) += a0·DB(3i, c) + a1·DB(3i+1, c) + a2·DB(3i+2, c) for c ≥ r,
-/// with (a0, a1, a2) = ∂N_a/∂X for r = 3a + i. Plain loops rather than Eigen, so that the compiler
-/// vectorises them for whichever instruction set the caller is compiled for: each entry is the
-/// same sum of the same products in the same order (no fused multiply-add, no reassociation), so
-/// the SSE2 and the AVX instance round alike, bit for bit (test "The hexahedra's BᵀDB kernel: its AVX
-/// and SSE2 instances round alike, and both are the dense product").
-template <int n>
-[[gnu::always_inline]] inline void add_BtDB_upper_loops(const double* dN /* n × 3, column-major */,
-                                                         const double* D /* 9 × 9 */, double* K) {
-  constexpr int m = 3 * n;
-  double DB[kActive * m];
-  for (int r = 0; r < kActive; ++r)
-    for (int k = 0; k < 3; ++k) {
-      const double d0 = D[r + 9 * (3 * k)], d1 = D[r + 9 * (3 * k + 1)], d2 = D[r + 9 * (3 * k + 2)];
-      double* out = DB + r * m + k;
-      for (int b = 0; b < n; ++b) out[3 * b] = d0 * dN[b] + d1 * dN[b + n] + d2 * dN[b + 2 * n];
-    }
-  for (int a = 0; a < n; ++a) {
-    const double a0 = dN[a], a1 = dN[a + n], a2 = dN[a + 2 * n];
-    for (int i = 0; i < 3; ++i) {
-      const int row = 3 * a + i;
-      const double *x = DB + 3 * i * m, *y = x + m, *z = y + m;
-      double* k = K + row * m;
-      for (int c = row; c < m; ++c) k[c] += a0 * x[c] + a1 * y[c] + a2 * z[c];
-    }
-  }
-}
-
-#if defined(__x86_64__) || defined(__i386__)
-#define SOFTARM_KERNEL_AVX 1
-/// The kernel for processors with AVX (four doubles an instruction, SSE2 two): the same loops.
-template <int n>
-[[gnu::target("avx")]] void add_BtDB_upper_avx(const double* dN, const double* D, double* K) {
-  add_BtDB_upper_loops<n>(dN, D, K);
-}
-#endif
-/// The kernel for any processor (on x86-64, SSE2).
-template <int n>
-void add_BtDB_upper_sse2(const double* dN, const double* D, double* K) {
-  add_BtDB_upper_loops<n>(dN, D, K);
-}
-
-/// Whether this processor runs AVX instructions (asked once).
-inline bool processor_has_avx() {
-#ifdef SOFTARM_KERNEL_AVX
-  static const bool has = [] {
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("avx") != 0;
-  }();
-  return has;
-#else
-  return false;
-#endif
-}
-}  // namespace detail
 
 /// Upper triangle (row <= column) of K += Bᵀ D B for a symmetric 9×9 D, using the structure of B
 /// (three non-zeros per column, see gradient_operator): 3× fewer operations than the dense product.
 /// K is row-major so that each row's update runs over contiguous columns (vectorised); the form
 /// mirrors the sum over an element's points once (the element's hot loop: 19 % of a 3CA cell run's
-/// samples when each point wrote both triangles entry by entry, 12 % as here on SSE2). On a
-/// processor with AVX the same loops run four doubles wide, rounding as on SSE2 (detail above).
+/// samples when each point wrote both triangles entry by entry, 12 % as here on SSE2). K's lower
+/// triangle is scratch: the kernel may write a few entries left of the diagonal. On a processor with
+/// AVX the loops run four doubles wide, rounding as on SSE2 (hex_btdb_kernel.hpp).
 template <class E, class UpperMatrix>
 void add_BtDB_upper(const ReferencePoint<E>& p, const Eigen::Matrix<double, kActive, kActive>& D, UpperMatrix& K) {
   static_assert(UpperMatrix::IsRowMajor, "add_BtDB_upper accumulates into a row-major matrix");
