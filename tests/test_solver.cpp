@@ -488,6 +488,40 @@ TEST_CASE("preconditioned CG solves an SPD system exactly in n steps and stops o
   CHECK(stop.negative_curvature);
 }
 
+TEST_CASE("CG gives up early only where its residuals put the tolerance well beyond its budget", "[solver]") {
+  // The rule: k + log(tol/r)/log ρ > 1.5·max, ρ = (r/r₁)^(1/(k−1)), from the fourth iteration on.
+  CHECK_FALSE(cg_out_of_reach(3, 1.0, 0.5, 1e-10, 10));   // too soon to tell
+  CHECK(cg_out_of_reach(4, 1.0, 0.1, 1e-10, 10));         // 0.46 an iteration: 27 more
+  CHECK_FALSE(cg_out_of_reach(4, 1.0, 1e-4, 1e-10, 10));  // 0.05 an iteration: 5 more
+  CHECK(cg_out_of_reach(5, 1.0, 1.0, 1e-10, 10));         // no progress at all
+  CHECK_FALSE(cg_out_of_reach(10, 1.0, 0.5, 1e-10, 10));  // the budget is spent: CG stops on its own
+  // A first step that overshoots ‖b‖ sevenfold, then 0.64 an iteration: 58 more, within 1.5 × 60
+  // (the single-precision factor's test, whose CG converges in about 30).
+  CHECK_FALSE(cg_out_of_reach(4, 6.8, 1.8, 1e-11, 60));
+  const auto identity = [](const Eigen::VectorXd& r) { return r; };
+  Eigen::VectorXd plain, early;
+  // Ill-conditioned (κ ≈ 700) without a preconditioner: 10 iterations are far from 10⁻¹², and the
+  // residuals say so early.
+  const SparseMatrix slow = laplacian(2.0, 2.0);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(slow.rows(), -1.0, 2.0);
+  const CgResult spent = preconditioned_cg(slow, b, identity, 1e-12, 10, plain);
+  const CgResult gave_up = preconditioned_cg(slow, b, identity, 1e-12, 10, early, true);
+  CHECK_FALSE(spent.converged);
+  CHECK(spent.iterations == 10);
+  CHECK_FALSE(gave_up.converged);
+  CHECK(gave_up.gave_up);
+  CHECK(gave_up.iterations < 10);
+  // Well conditioned (κ ≈ 9): it converges within the budget, the same iterates either way.
+  const SparseMatrix fast = laplacian(2.5, 2.5);
+  const CgResult a = preconditioned_cg(fast, b, identity, 1e-8, 40, plain);
+  const CgResult c = preconditioned_cg(fast, b, identity, 1e-8, 40, early, true);
+  REQUIRE(a.converged);
+  CHECK(c.converged);
+  CHECK_FALSE(c.gave_up);
+  CHECK(c.iterations == a.iterations);
+  CHECK(early == plain);
+}
+
 TEST_CASE("a changed SPD tangent is solved by CG on the earlier factor, an indefinite one is refused", "[solver]") {
   LinearSolver::Options options;
   options.reuse_cg_iterations = 4;

@@ -290,7 +290,7 @@ bool LinearSolver::solve_reusing_factor(const LinearOperator& apply, const Eigen
                                         int max_iterations, Eigen::VectorXd& d) {
   if (status_ != Status::positive_definite || shifted_) return false;
   const CgResult cg = preconditioned_cg(apply, b, [this](const Eigen::VectorXd& r) { return precondition(r); },
-                                        tolerance, max_iterations, d);
+                                        tolerance, max_iterations, d, /*give_up_early=*/true);
   cg_iterations += cg.iterations;
   if (cg.converged) ++reused_solves;
   return cg.converged;

@@ -72,7 +72,8 @@ class LinearSolver {
   /// K's pattern (preconditioned_cg.hpp), to ‖K d − b‖ ≤ tolerance·‖b‖. Returns false (d
   /// unspecified) when there is no such factor, when CG meets non-positive curvature (K is
   /// not positive definite), or when it has not converged within the iterations that cost
-  /// half a factorisation (reuse_cg_budget); the caller then factorises K.
+  /// half a factorisation (reuse_cg_budget) or will not (CG gives up early where its residuals
+  /// project the tolerance well beyond them: preconditioned_cg.hpp); the caller then factorises K.
   bool solve_reusing_factor(const SparseMatrix& K, const Eigen::VectorXd& b, double tolerance, Eigen::VectorXd& d);
   /// The same for an operator given by its action (a matrix plus a low-rank term) and an
   /// explicit CG budget.

@@ -1,17 +1,27 @@
 #include "fem/solver/preconditioned_cg.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace softarm::fem {
 
+bool cg_out_of_reach(int k, double first, double best, double tolerance, int max_iterations) {
+  constexpr int kFirstCheck = 4;
+  constexpr double kSlack = 1.5;  // of the budget
+  if (k < kFirstCheck || k >= max_iterations || best <= tolerance) return false;
+  const double rate = std::pow(best / first, 1.0 / (k - 1));  // mean reduction per iteration since the first
+  if (!(rate < 1.0)) return true;
+  return k + std::log(tolerance / best) / std::log(rate) > kSlack * max_iterations;
+}
+
 CgResult preconditioned_cg(const SparseMatrix& K, const Eigen::VectorXd& b, const LinearOperator& precondition,
-                           double tolerance, int max_iterations, Eigen::VectorXd& d) {
+                           double tolerance, int max_iterations, Eigen::VectorXd& d, bool give_up_early) {
   return preconditioned_cg([&K](const Eigen::VectorXd& p) { return Eigen::VectorXd(K * p); }, b, precondition,
-                           tolerance, max_iterations, d);
+                           tolerance, max_iterations, d, give_up_early);
 }
 
 CgResult preconditioned_cg(const LinearOperator& apply, const Eigen::VectorXd& b, const LinearOperator& precondition,
-                           double tolerance, int max_iterations, Eigen::VectorXd& d) {
+                           double tolerance, int max_iterations, Eigen::VectorXd& d, bool give_up_early) {
   CgResult out;
   d = Eigen::VectorXd::Zero(b.size());
   const double b_norm = b.norm();
@@ -24,6 +34,7 @@ CgResult preconditioned_cg(const LinearOperator& apply, const Eigen::VectorXd& b
   Eigen::VectorXd z = precondition(r);
   Eigen::VectorXd p = z;
   double rz = r.dot(z);
+  double first = 0.0, best = 0.0;
   for (int k = 0; k < max_iterations; ++k) {
     const Eigen::VectorXd Kp = apply(p);
     const double curvature = p.dot(Kp);
@@ -38,6 +49,12 @@ CgResult preconditioned_cg(const LinearOperator& apply, const Eigen::VectorXd& b
     out.relative_residual = r.norm() / b_norm;
     if (out.relative_residual <= tolerance) {
       out.converged = true;
+      return out;
+    }
+    if (k == 0) first = best = out.relative_residual;
+    best = std::min(best, out.relative_residual);
+    if (give_up_early && cg_out_of_reach(out.iterations, first, best, tolerance, max_iterations)) {
+      out.gave_up = true;
       return out;
     }
     z = precondition(r);
