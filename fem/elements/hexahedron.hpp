@@ -224,7 +224,6 @@ void add_Bt_times(const ReferencePoint<E>& p, const Eigen::Matrix<double, kActiv
       out[3 * a + i] += s * (p.dN_dX(a, 0) * v[3 * i] + p.dN_dX(a, 1) * v[3 * i + 1] + p.dN_dX(a, 2) * v[3 * i + 2]);
 }
 
-
 /// Upper triangle (row <= column) of K += Bᵀ D B for a symmetric 9×9 D, using the structure of B
 /// (three non-zeros per column, see gradient_operator): 3× fewer operations than the dense product.
 /// K is row-major so that each row's update runs over contiguous columns (vectorised); the form
