@@ -548,6 +548,29 @@ TEST_CASE("a changed SPD tangent is solved by CG on the earlier factor, an indef
   CHECK(solver.reused_solves == 1);
 }
 
+TEST_CASE("CG on a held factor gives up early unless its caller's fallback is dearer than its budget", "[solver]") {
+  // Volume control's CG (volume_control.cpp) falls back on an LU of an indefinite K: it asks for
+  // the whole budget. The factor of a near-diagonal matrix preconditions the 1D Laplacian (κ ≈ 700)
+  // hardly at all: 10 iterations are far from 10⁻¹², and the residuals say so early.
+  LinearSolver::Options options;
+  options.reuse_cg_iterations = 10;
+  LinearSolver solver(options);
+  REQUIRE(solver.factorize(laplacian(50.0, 50.0)) == LinearSolver::Status::positive_definite);
+  const SparseMatrix slow = laplacian(2.0, 2.0);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(slow.rows(), -1.0, 2.0);
+  Eigen::VectorXd d;
+  CHECK_FALSE(solver.solve_reusing_factor(slow, b, 1e-12, d));
+  const int early = solver.cg_iterations;
+  CHECK(early >= 4);
+  CHECK(early < 10);
+  const LinearOperator apply = [&](const Eigen::VectorXd& p) { return Eigen::VectorXd(slow * p); };
+  CHECK_FALSE(solver.solve_reusing_factor(apply, b, 1e-12, 10, /*give_up_early=*/false, d));
+  CHECK(solver.cg_iterations - early == 10);
+  CHECK_FALSE(solver.solve_reusing_factor(apply, b, 1e-12, 10, /*give_up_early=*/true, d));
+  CHECK(solver.cg_iterations - early - 10 == early);
+  CHECK(solver.factorizations == 1);
+}
+
 TEST_CASE("Newton reusing factors reaches the same path with fewer factorisations", "[solver]") {
   // The compression path of the stepper tests, solved twice: every iteration factorised, and by
   // CG on the last factor (inexact Newton, forcing min(1e-2, relative residual)).

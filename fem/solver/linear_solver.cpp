@@ -283,14 +283,14 @@ bool LinearSolver::solve_reusing_factor(const SparseMatrix& K, const Eigen::Vect
                                         Eigen::VectorXd& d) {
   const int budget = options_.reuse_cg_iterations > 0 ? options_.reuse_cg_iterations : reuse_cg_budget();
   return solve_reusing_factor([&K](const Eigen::VectorXd& p) { return Eigen::VectorXd(K * p); }, b, tolerance, budget,
-                              d);
+                              /*give_up_early=*/true, d);
 }
 
 bool LinearSolver::solve_reusing_factor(const LinearOperator& apply, const Eigen::VectorXd& b, double tolerance,
-                                        int max_iterations, Eigen::VectorXd& d) {
+                                        int max_iterations, bool give_up_early, Eigen::VectorXd& d) {
   if (status_ != Status::positive_definite || shifted_) return false;
   const CgResult cg = preconditioned_cg(apply, b, [this](const Eigen::VectorXd& r) { return precondition(r); },
-                                        tolerance, max_iterations, d, /*give_up_early=*/true);
+                                        tolerance, max_iterations, d, give_up_early);
   cg_iterations += cg.iterations;
   if (cg.converged) ++reused_solves;
   return cg.converged;

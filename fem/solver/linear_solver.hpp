@@ -76,9 +76,10 @@ class LinearSolver {
   /// project the tolerance well beyond them: preconditioned_cg.hpp); the caller then factorises K.
   bool solve_reusing_factor(const SparseMatrix& K, const Eigen::VectorXd& b, double tolerance, Eigen::VectorXd& d);
   /// The same for an operator given by its action (a matrix plus a low-rank term) and an
-  /// explicit CG budget.
+  /// explicit CG budget; CG gives up early only if `give_up_early` (a caller whose fallback is
+  /// cheaper than the budget: not one whose fallback is an LU).
   bool solve_reusing_factor(const LinearOperator& apply, const Eigen::VectorXd& b, double tolerance,
-                            int max_iterations, Eigen::VectorXd& d);
+                            int max_iterations, bool give_up_early, Eigen::VectorXd& d);
   Status status() const { return status_; }
   /// CG iterations that cost about half a factorisation: from the analysis' flop count and
   /// nnz(L), with the measured ratio of the two kinds of flop (linear_solver.cpp).

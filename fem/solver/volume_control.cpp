@@ -24,7 +24,12 @@ std::string fmt(double v) { return number_text(v, 5); }
 // control, positive definite); the rank-one term adds one outlying eigenvalue, one more CG
 // iteration. dλ/dV follows by Sherman–Morrison: with t = ∇Vᵀ(K + α∇V∇Vᵀ)⁻¹∇V,
 // ∇VᵀK⁻¹∇V = t / (1 − αt). Where CG fails (a negative eigenvalue the volume does not see, or
-// the budget) the iteration factorises K as before.
+// the budget) the iteration factorises K as before. CG spends its whole budget here, without the
+// early give-up of the other solves on a held factor (preconditioned_cg.hpp): that rule projects
+// from the mean rate since the first iteration, which the rank-one term's outlier slows until CG
+// has found it, and the fallback is an LU of the indefinite K, dearer than the budget in time
+// and in memory (in the design's first verification, one end cell's LU, 15,444 unknowns, took
+// the process's peak from 708 to 944 MB: docs/performance.md).
 struct AugmentedSolves {
   bool wanted = false;   // VolumeControlSettings::augmented_cg
   bool prepared = false;
@@ -52,7 +57,7 @@ struct AugmentedSolves {
     if (!(alpha > 0)) return false;
     const LinearOperator apply = [&](const Vector& p) { return Vector(K * p + (alpha * g.dot(p)) * g); };
     const int before = factor.cg_iterations;
-    const bool solved = factor.solve_reusing_factor(apply, rhs, tolerance, budget, d);
+    const bool solved = factor.solve_reusing_factor(apply, rhs, tolerance, budget, /*give_up_early=*/false, d);
     last_iterations += factor.cg_iterations - before;
     return solved;
   }
