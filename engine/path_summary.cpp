@@ -19,15 +19,10 @@ nlohmann::json path_solver_json(const fem::PressurePathResult& path) {
           {"factor_nonzeros_million", 1e-6 * path.factor_nonzeros}};
 }
 
-nlohmann::json cells_solver_json(const fem::SolverWork& work) {
-  return {{"cell_paths", work.paths},
-          {"cell_dofs_summed", work.dofs},
-          {"newton_iterations", work.newton_iterations},
-          {"factorizations", work.factorizations},
-          {"indefinite_tangents_lu", work.lu_fallbacks},
-          {"shifted_cholesky_attempts", work.shifted_factorizations},
-          {"cg_iterations", work.cg_iterations},
-          {"cell_seconds_summed", work.seconds}};
+std::string cells_solver_text(const fem::SolverWork& work) {
+  return std::to_string(work.newton_iterations) + " Newton iterations, " + std::to_string(work.factorizations) +
+         " factorisations (+" + std::to_string(work.shifted_factorizations) + " shifted), " +
+         std::to_string(work.lu_fallbacks) + " LUs, " + std::to_string(work.cg_iterations) + " CG iterations";
 }
 
 void add_failure_json(nlohmann::json& summary, const fem::PressurePathResult& path) {

@@ -133,7 +133,7 @@ int simulate_cell_rod_tca(const fem::SceneConfig& config) {
                    {"end_cells_note", r.end_cells_note}, {"rod", r.spatial ? "spatial" : "planar"},
                    {"outcome", fem::to_string(r.outcome)}, {"reached_pressure_kPa", r.reached_pressure_kPa},
                    {"diagnosis", r.diagnosis}, {"cell_seconds", r.cell_seconds}, {"rod_seconds", r.rod_seconds},
-                   {"solver", cells_solver_json(r.work)}});
+                   {"solver", fem::solver_work_to_json(r.work)}});
   const std::string centrelines = write_centrelines(config, r.curve, "pressure_kPa", pressure_of);
   std::cout << "written: " << dir << "/curve.csv, " << dir << "/summary.json" << centrelines << "\n";
   return fem::is_answer(r.outcome) ? 0 : 1;
@@ -189,7 +189,7 @@ int simulate_cell_rod_spl(const fem::SceneConfig& config) {
                    {"largest_cell_dofs", c.largest_cell_dofs}, {"end_cells", c.end_cells},
                    {"largest_end_cell_dofs", c.largest_end_cell_dofs}, {"end_cells_note", c.end_cells_note},
                    {"cell_seconds", c.seconds},
-                   {"rod_seconds", r.rod_seconds}, {"solver", cells_solver_json(c.work)}});
+                   {"rod_seconds", r.rod_seconds}, {"solver", fem::solver_work_to_json(c.work)}});
   const std::string centrelines = write_centrelines(config, r.curve, "load_fraction", load_fraction_of);
   std::cout << "written: " << dir << "/curve.csv, " << dir << "/summary.json" << centrelines << "\n";
   return r.converged ? 0 : 1;

@@ -7,6 +7,7 @@
 
 #include "fem/core/number_text.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
+#include "fem/scenes/solver_work_json.hpp"
 #include "objectives/solid_segment_check.hpp"
 #include "fem/core/angles.hpp"
 
@@ -238,6 +239,7 @@ CellRodEvaluation evaluate_arm_on_cells(const ArmCandidate& c, const EvaluationS
   // Planar loads in every segment's mirror plane: no torsion to measure.
   const fem::SplCells cells = fem::spl_cells(arm_cell_scene(c, s), cell_levels, adjust, false, spread, progress);
   out.cell_seconds = cells.seconds;
+  out.cell_work = cells.work;
   out.cells = cells.cells;
   out.end_cells = cells.end_cells;
   out.largest_cell_dofs = cells.largest_cell_dofs;
@@ -358,6 +360,7 @@ nlohmann::json to_json(const CellRodEvaluation& e) {
           {"largest_cell_dofs", e.largest_cell_dofs},
           {"largest_end_cell_dofs", e.largest_end_cell_dofs},
           {"cell_seconds", e.cell_seconds},
+          {"cell_work", fem::solver_work_to_json(e.cell_work)},
           {"pose_seconds", e.pose_seconds},
           {"poses", e.poses},
           {"model", e.model},
@@ -392,6 +395,8 @@ CellRodEvaluation cell_rod_evaluation_from_json(const nlohmann::json& j) {
   e.largest_cell_dofs = j.at("largest_cell_dofs").get<int>();
   e.largest_end_cell_dofs = j.at("largest_end_cell_dofs").get<int>();
   e.cell_seconds = j.at("cell_seconds").get<double>();
+  // A checkpoint written before the cells' solves were kept has none: they stay zero.
+  if (j.contains("cell_work")) e.cell_work = fem::solver_work_from_json(j.at("cell_work"));
   e.pose_seconds = j.at("pose_seconds").get<double>();
   e.poses = j.at("poses").get<int>();
   e.model = j.at("model").get<std::string>();

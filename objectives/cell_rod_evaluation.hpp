@@ -48,6 +48,7 @@ struct CellRodEvaluation {
   std::array<double, 3> segment_reached_kPa{};  // each segment's cells: the working pressure or where they stopped
   int cells = 0, end_cells = 0, largest_cell_dofs = 0, largest_end_cell_dofs = 0;
   double cell_seconds = 0, pose_seconds = 0;
+  fem::SolverWork cell_work;     // the cells' paths' solves, summed (Newton, factorisations, LUs, CG)
   int poses = 0;                 // rod equilibria solved (bending paths, payload search)
   std::string model;             // what was run, in words
   std::string failure;           // non-empty: no cells (the design has no ring pitch, a cell's tangent failed)

@@ -98,6 +98,14 @@ void check_json(const Thesis& t) {
   CHECK(back.measures.payload_kg == t.cells.measures.payload_kg);
   CHECK(back.measures.segments[2].bending_deg == t.cells.measures.segments[2].bending_deg);
   CHECK(back.segment_outcome == t.cells.segment_outcome);
+  // The cells' solves, a path for each cell and end cell, come back too; a checkpoint written before
+  // they were kept reads back with none.
+  CHECK(t.cells.cell_work.paths == t.cells.cells + t.cells.end_cells);
+  CHECK(back.cell_work.newton_iterations == t.cells.cell_work.newton_iterations);
+  CHECK(back.cell_work.lu_fallbacks == t.cells.cell_work.lu_fallbacks);
+  nlohmann::json before = objectives::to_json(t.cells);
+  before.erase("cell_work");
+  CHECK(objectives::cell_rod_evaluation_from_json(before).cell_work.paths == 0);
 }
 }  // namespace
 

@@ -70,5 +70,15 @@ TEST_CASE("an improvement round searches about the verified design and the answe
   CHECK(s["optimum"] == (*best)["optimum"]);
   CHECK(s["verification"]["measures"]["mass_kg"] == (*best)["verification"]["measures"]["mass_kg"]);
   CHECK(s["verification"]["all_met"] == true);
+  // What the verification's cells cost is kept and said: a path for each cell and end cell, at least
+  // a Newton iteration and the factorisation its first step needs each.
+  const json& solver = s["verification"]["cell_solver"];
+  INFO("cells' solves: " << solver.dump());
+  const int paths = s["verification"]["cells"].get<int>() + s["verification"]["end_cells"].get<int>();
+  CHECK(solver["cell_paths"].get<int>() == paths);
+  CHECK(solver["newton_iterations"].get<int>() >= paths);
+  CHECK(solver["factorizations"].get<int>() >= paths);
+  CHECK_THAT(log, Catch::Contains("s (" + std::to_string(solver["newton_iterations"].get<int>()) + " Newton iterations, " +
+                                  std::to_string(solver["factorizations"].get<int>()) + " factorisations"));
   fs::remove_all(dir);
 }

@@ -5,6 +5,7 @@
 
 #include "engine/design/design_measures.hpp"
 #include "engine/design/design_problem.hpp"
+#include "engine/path_summary.hpp"
 #include "engine/report/html_document.hpp"
 #include "engine/report/output_files.hpp"
 #include "engine/report/svg_plot.hpp"
@@ -165,6 +166,7 @@ nlohmann::json verification_json(const DesignRun& run) {
                       {"end_cells", v.end_cells},
                       {"largest_cell_dofs", v.largest_cell_dofs},
                       {"cell_seconds", v.cell_seconds},
+                      {"cell_solver", fem::solver_work_to_json(v.cell_work)},
                       {"pose_seconds", v.pose_seconds},
                       {"poses", v.poses},
                       {"measures", measures_json(v.measures)},
@@ -296,7 +298,8 @@ void add_verification(report::HtmlDocument& doc, const DesignRun& run) {
     const objectives::CellRodEvaluation& v = *run.verification();
     doc.heading(2, "Verification on the accurate model");
     doc.paragraph("Every requirement of the final design on the cell rod of the whole arm (" + v.model + "; cells " +
-                  format_number(v.cell_seconds) + " s, " + std::to_string(v.poses) + " rod poses " +
+                  format_number(v.cell_seconds) + " s: " + cells_solver_text(v.cell_work) + "; " +
+                  std::to_string(v.poses) + " rod poses " +
                   format_number(v.pose_seconds) + " s). This verdict decides feasibility; the search model only guides.");
     doc.table({"constraint", "accurate model", "margin"}, constraint_rows(c, v.measures, run.reference_strain),
               "final design on the cell rod");

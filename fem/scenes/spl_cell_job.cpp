@@ -5,6 +5,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "fem/scenes/solver_work_json.hpp"
 #include "fem/scenes/tca_cell.hpp"
 #include "fem/scenes/twist_compliance.hpp"
 
@@ -105,15 +106,7 @@ std::string to_text(const CellJobResult& r) {
       {"dofs", r.dofs},
       {"half_model", r.half_model},
       {"torsion", number(r.torsion)},
-      {"work",
-       {{"paths", r.work.paths},
-        {"dofs", r.work.dofs},
-        {"newton_iterations", r.work.newton_iterations},
-        {"factorizations", r.work.factorizations},
-        {"shifted_factorizations", r.work.shifted_factorizations},
-        {"lu_fallbacks", r.work.lu_fallbacks},
-        {"cg_iterations", r.work.cg_iterations},
-        {"seconds", r.work.seconds}}}};
+      {"work", solver_work_to_json(r.work)}};
   return j.dump();
 }
 
@@ -143,15 +136,7 @@ CellJobResult cell_job_from_text(const std::string& text) {
   r.dofs = j.at("dofs").get<int>();
   r.half_model = j.at("half_model").get<bool>();
   r.torsion = number(j.at("torsion"));
-  const json& w = j.at("work");
-  r.work.paths = w.at("paths").get<int>();
-  r.work.dofs = w.at("dofs").get<long long>();
-  r.work.newton_iterations = w.at("newton_iterations").get<int>();
-  r.work.factorizations = w.at("factorizations").get<int>();
-  r.work.shifted_factorizations = w.at("shifted_factorizations").get<int>();
-  r.work.lu_fallbacks = w.at("lu_fallbacks").get<int>();
-  r.work.cg_iterations = w.at("cg_iterations").get<int>();
-  r.work.seconds = w.at("seconds").get<double>();
+  r.work = solver_work_from_json(j.at("work"));
   return r;
 }
 
