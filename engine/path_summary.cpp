@@ -19,12 +19,6 @@ nlohmann::json path_solver_json(const fem::PressurePathResult& path) {
           {"factor_nonzeros_million", 1e-6 * path.factor_nonzeros}};
 }
 
-std::string cells_solver_text(const fem::SolverWork& work) {
-  return std::to_string(work.newton_iterations) + " Newton iterations, " + std::to_string(work.factorizations) +
-         " factorisations (+" + std::to_string(work.shifted_factorizations) + " shifted), " +
-         std::to_string(work.lu_fallbacks) + " LUs, " + std::to_string(work.cg_iterations) + " CG iterations";
-}
-
 void add_failure_json(nlohmann::json& summary, const fem::PressurePathResult& path) {
   switch (path.outcome) {
     case fem::PathOutcome::limit_point:

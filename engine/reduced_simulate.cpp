@@ -8,6 +8,7 @@
 #include "engine/spl_report.hpp"
 #include "fem/io/vtu_writer.hpp"
 #include "fem/scenes/reduced_scenes.hpp"
+#include "fem/scenes/solver_work_json.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
 #include "fem/scenes/tca_cell_rod.hpp"
 #include "studies/progress_bar.hpp"

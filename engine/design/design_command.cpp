@@ -12,7 +12,6 @@
 #include "engine/design/design_report.hpp"
 #include "engine/design/measures_memo.hpp"
 #include "engine/design/search_log.hpp"
-#include "engine/path_summary.hpp"
 #include "engine/report/output_files.hpp"
 #include "fem/core/json_reader.hpp"
 #include "objectives/cell_rod_evaluation.hpp"
@@ -169,7 +168,7 @@ std::optional<objectives::CellRodEvaluation> verify_on_cells(const DesignConfig&
     checkpoint.add(x, *v);
   }
   std::cout << "verification (" << v->model << "; cells " << fixed(v->cell_seconds, 0) << " s ("
-            << cells_solver_text(v->cell_work) << "), " << v->poses
+            << fem::solver_work_text(v->cell_work) << "), " << v->poses
             << " rod poses " << fixed(v->pose_seconds, 1) << " s)";
   if (!v->ok()) {
     std::cout << ": no cells: " << v->failure << "\n";

@@ -5,13 +5,13 @@
 
 #include "engine/design/design_measures.hpp"
 #include "engine/design/design_problem.hpp"
-#include "engine/path_summary.hpp"
 #include "engine/report/html_document.hpp"
 #include "engine/report/output_files.hpp"
 #include "engine/report/svg_plot.hpp"
 #include "fem/io/vtu_writer.hpp"
 #include "fem/mesh/tca_mesher.hpp"
 #include "fem/scenes/fidelity.hpp"
+#include "fem/scenes/solver_work_json.hpp"
 #include "objectives/fit_range.hpp"
 
 namespace softarm::engine {
@@ -298,7 +298,7 @@ void add_verification(report::HtmlDocument& doc, const DesignRun& run) {
     const objectives::CellRodEvaluation& v = *run.verification();
     doc.heading(2, "Verification on the accurate model");
     doc.paragraph("Every requirement of the final design on the cell rod of the whole arm (" + v.model + "; cells " +
-                  format_number(v.cell_seconds) + " s: " + cells_solver_text(v.cell_work) + "; " +
+                  format_number(v.cell_seconds) + " s: " + fem::solver_work_text(v.cell_work) + "; " +
                   std::to_string(v.poses) + " rod poses " +
                   format_number(v.pose_seconds) + " s). This verdict decides feasibility; the search model only guides.");
     doc.table({"constraint", "accurate model", "margin"}, constraint_rows(c, v.measures, run.reference_strain),

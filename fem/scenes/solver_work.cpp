@@ -24,4 +24,10 @@ void SolverWork::add(const SolverWork& other) {
   seconds += other.seconds;
 }
 
+std::string solver_work_text(const SolverWork& w) {
+  return std::to_string(w.newton_iterations) + " Newton iterations, " + std::to_string(w.factorizations) +
+         " factorisations (+" + std::to_string(w.shifted_factorizations) + " shifted), " +
+         std::to_string(w.lu_fallbacks) + " LUs, " + std::to_string(w.cg_iterations) + " CG iterations";
+}
+
 }  // namespace softarm::fem
