@@ -29,7 +29,7 @@ std::string fmt(double v) { return number_text(v, 5); }
 // from the mean rate since the first iteration, which the rank-one term's outlier slows until CG
 // has found it, and the fallback is an LU of the indefinite K, dearer than the budget in time
 // and in memory (in the design's first verification, one end cell's LU, 15,444 unknowns, took
-// the process's peak from 708 to 944 MB: docs/performance.md).
+// the process's resident memory from about 730 to 944 MB: docs/performance.md).
 struct AugmentedSolves {
   bool wanted = false;   // VolumeControlSettings::augmented_cg
   bool prepared = false;
