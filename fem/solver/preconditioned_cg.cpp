@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace softarm::fem {
 
@@ -34,7 +35,7 @@ CgResult preconditioned_cg(const LinearOperator& apply, const Eigen::VectorXd& b
   Eigen::VectorXd z = precondition(r);
   Eigen::VectorXd p = z;
   double rz = r.dot(z);
-  double first = 0.0, best = 0.0;
+  double first = 0.0, best = std::numeric_limits<double>::infinity();  // relative residuals (the give-up rule)
   for (int k = 0; k < max_iterations; ++k) {
     const Eigen::VectorXd Kp = apply(p);
     const double curvature = p.dot(Kp);
@@ -51,7 +52,7 @@ CgResult preconditioned_cg(const LinearOperator& apply, const Eigen::VectorXd& b
       out.converged = true;
       return out;
     }
-    if (k == 0) first = best = out.relative_residual;
+    if (k == 0) first = out.relative_residual;
     best = std::min(best, out.relative_residual);
     if (give_up_early && cg_out_of_reach(out.iterations, first, best, tolerance, max_iterations)) {
       out.gave_up = true;

@@ -10,10 +10,11 @@
 // non-positive curvature (pᵀKp ≤ 0): a certificate that K is not positive definite,
 // on which the caller factorises instead (and learns the inertia from CHOLMOD).
 //
-// A caller with something better to do than iterate (LinearSolver factorises) may let CG give up
-// early: from its fourth iteration on, where the smallest relative residual so far, r, reached from
-// the first iteration's r₁ at the mean rate ρ = (r/r₁)^(1/(k−1)), projects the tolerance beyond 1.5
-// times the iteration budget (k + log(tol/r)/log ρ > 1.5·max). The first iteration's residual, not
+// A caller with something better to do than iterate may let CG give up early (LinearSolver's solves
+// on a held factor, which factorise instead; not volume control's, whose fallback is an LU): from
+// its fourth iteration on, where the smallest relative residual so far, r, reached from the first
+// iteration's r₁ at the mean rate ρ = (r/r₁)^(1/(k−1)), projects the tolerance beyond 1.5 times the
+// iteration budget (k + log(tol/r)/log ρ > 1.5·max). The first iteration's residual, not
 // ‖b‖, is the reference: CG's residual norm may rise above ‖b‖ at its first step. CG converges
 // faster than geometrically as it goes, so the projection is pessimistic; the factor 1.5 leaves it
 // room. On SPL segment 1's cells (`bench_speed --item segment`), whose CG runs on a held factor have
