@@ -16,7 +16,12 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 bool is_time_name(const std::string& name) {
-  return name == "seconds" || name.ends_with("_seconds") || name.ends_with("_s");
+  // "seconds" as one of the name's words (`seconds`, `factorize_seconds`, `cell_seconds_summed`), or
+  // the unit suffix `_s`.
+  std::istringstream words(name);
+  for (std::string word; std::getline(words, word, '_');)
+    if (word == "seconds") return true;
+  return name.ends_with("_s");
 }
 
 namespace {

@@ -39,7 +39,7 @@ struct OutputComparison {
 OutputComparison compare_output_directories(const std::filesystem::path& first, const std::filesystem::path& second,
                                             const ComparisonTolerance& tolerance);
 
-/// True for a key or column that holds a time in seconds ("seconds", "*_seconds", "*_s").
+/// True for a key or column that holds a time in seconds: "seconds" one of its words (split at "_"), or "*_s".
 bool is_time_name(const std::string& name);
 
 }  // namespace softarm::test
