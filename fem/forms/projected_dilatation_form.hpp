@@ -53,14 +53,6 @@ class ProjectedDilatationForm final : public ElasticForm {
     return v;
   }
 
-  // Active block of the 9×9 tangent A(3i+J, 3k+L) = ∂P_iJ/∂F_kL.
-  static MatA active(const Tangent9& A) {
-    MatA a;
-    for (int r = 0; r < Active; ++r)
-      for (int c = 0; c < Active; ++c) a(r, c) = A(Components[r], Components[c]);
-    return a;
-  }
-
   // ∂²J/∂F∂F = J (F⁻¹_Ji F⁻¹_Lk − F⁻¹_Jk F⁻¹_Li), active block.
   static MatA jacobian_hessian(double J, const Mat3& Finv) {
     MatA H;
@@ -282,7 +274,7 @@ class ProjectedDilatationForm final : public ElasticForm {
     if (want_hessian) K_upper.setZero();
     for (int q = 0; q < E::kGaussPoints; ++q) {
       const Point<E>& p = points[q];
-      const auto s = evaluate_principal(law, F[q], want_hessian);
+      const auto s = evaluate_principal<Active>(law, F[q], want_hessian, Components);  // A on the active components
       if (!s) return FormStatus::inverted(e, "inverted element (det F <= 0 at a Gauss point)");
       out.W += s->W * p.dV;
       if (!want_gradient && !want_hessian) {
@@ -291,7 +283,7 @@ class ProjectedDilatationForm final : public ElasticForm {
       }
       VecA stress = active(s->P);
       MatA tangent;
-      if (want_hessian) tangent = active(s->A);
+      if (want_hessian) tangent = s->A;
       if (split) {
         const Mat3 Finv = F[q].inverse();
         const VecA dJ = active(Mat3(J[q] * Finv.transpose()));  // ∂J/∂F = J F⁻ᵀ

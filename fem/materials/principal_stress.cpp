@@ -10,8 +10,6 @@ namespace softarm::fem {
 namespace {
 
 using Vec3 = Eigen::Vector3d;
-using Vec9 = Eigen::Matrix<double, 9, 1>;
-using Mat93 = Eigen::Matrix<double, 9, 3>;
 
 /// Shear modulus of the principal-frame tangent, γ_ab = ℂ_abab = ℂ_abba (a ≠ b).
 ///
@@ -38,34 +36,39 @@ double shear_modulus(double ca, double cb, double fa, double fb, double faa, dou
 ///   S = λ tr E I + 2μ E,  P = F S,
 ///   A_iJkL = δ_ik S_JL + F_iI ℂ_IJKL F_kK,  ℂ_IJKL = λ δ_IJ δ_KL + μ (δ_IK δ_JL + δ_IL δ_JK),
 /// so F ℂ F gives λ F_iJ F_kL + μ (FFᵀ)_ik δ_JL + μ F_iL F_kJ. The same W as the principal form.
-std::optional<PrincipalStress> evaluate_green_strain_hooke(const GreenStrainHooke& law, const Mat3& F,
-                                                          bool with_tangent) {
+template <int N>
+std::optional<PrincipalStressOn<N>> evaluate_green_strain_hooke(const GreenStrainHooke& law, const Mat3& F,
+                                                                bool with_tangent, const std::array<int, N>& active) {
   const double lambda = law.lambda_MPa, mu = law.mu_MPa;
   const Mat3 E = 0.5 * (F.transpose() * F - Mat3::Identity());
   const double trace = E.trace();
-  PrincipalStress out;
+  PrincipalStressOn<N> out;
   out.W = 0.5 * lambda * trace * trace + mu * E.squaredNorm();
   if (!std::isfinite(out.W)) return std::nullopt;
   const Mat3 S = lambda * trace * Mat3::Identity() + 2.0 * mu * E;
   out.P = F * S;
   if (!with_tangent) return out;
   const Mat3 b = F * F.transpose();
-  for (int k = 0; k < 3; ++k)
-    for (int L = 0; L < 3; ++L)
-      for (int i = 0; i < 3; ++i)
-        for (int J = 0; J < 3; ++J)
-          out.A(3 * i + J, 3 * k + L) = (i == k ? S(J, L) : 0.0) + lambda * F(i, J) * F(k, L) +
-                                        (J == L ? mu * b(i, k) : 0.0) + mu * F(i, L) * F(k, J);
+  for (int c = 0; c < N; ++c) {
+    const int k = active[c] / 3, L = active[c] % 3;
+    for (int r = 0; r < N; ++r) {
+      const int i = active[r] / 3, J = active[r] % 3;
+      out.A(r, c) = (i == k ? S(J, L) : 0.0) + lambda * F(i, J) * F(k, L) + (J == L ? mu * b(i, k) : 0.0) +
+                    mu * F(i, L) * F(k, J);
+    }
+  }
   return out;
 }
 
 }  // namespace
 
-std::optional<PrincipalStress> evaluate_principal(const HyperelasticLaw& law, const Mat3& F, bool with_tangent) {
+template <int N>
+std::optional<PrincipalStressOn<N>> evaluate_principal(const HyperelasticLaw& law, const Mat3& F, bool with_tangent,
+                                                       const std::array<int, N>& active) {
   const double J = F.determinant();
   if (!(J > 0.0)) return std::nullopt;
 
-  if (const auto hooke = law.green_strain_hooke()) return evaluate_green_strain_hooke(*hooke, F, with_tangent);
+  if (const auto hooke = law.green_strain_hooke()) return evaluate_green_strain_hooke<N>(*hooke, F, with_tangent, active);
 
   const Mat3 C = F.transpose() * F;
   Vec3 c;
@@ -77,7 +80,7 @@ std::optional<PrincipalStress> evaluate_principal(const HyperelasticLaw& law, co
   const Mat3& fh = W.h;
   if (!std::isfinite(W.v) || !f.allFinite() || (with_tangent && !fh.allFinite())) return std::nullopt;
 
-  PrincipalStress out;
+  PrincipalStressOn<N> out;
   out.W = W.v;
   const Mat3 S = Q * (2.0 * f).asDiagonal() * Q.transpose();
   out.P = F * S;
@@ -87,24 +90,39 @@ std::optional<PrincipalStress> evaluate_principal(const HyperelasticLaw& law, co
   //  - normal terms Σ_ab 4 f_ab M_a M_bᵀ with M_a(3i+J) = G_ia Q_Ja;
   //  - shear terms: for each pair a < b, ℂ_abab and ℂ_abba (and their (b,a)
   //    images) combine into γ_ab Y Yᵀ with Y(3i+J) = G_ia Q_Jb + G_ib Q_Ja.
+  // Each on the active components' rows alone.
   const Mat3 G = F * Q;
-  Mat93 M;
-  for (int a = 0; a < 3; ++a)
-    for (int i = 0; i < 3; ++i) M.block<3, 1>(3 * i, a) = G(i, a) * Q.col(a);
+  Eigen::Matrix<double, N, 3> M;
+  for (int r = 0; r < N; ++r)
+    for (int a = 0; a < 3; ++a) M(r, a) = G(active[r] / 3, a) * Q(active[r] % 3, a);
   out.A.noalias() = M.lazyProduct((4.0 * fh).lazyProduct(M.transpose()));  // small: avoid the blocked GEMM path
 
   for (int a = 0; a < 3; ++a) {
     for (int b = a + 1; b < 3; ++b) {
       const double gamma = shear_modulus(c[a], c[b], f[a], f[b], fh(a, a), fh(b, b), fh(a, b));
-      Vec9 Y;
-      for (int i = 0; i < 3; ++i) Y.segment<3>(3 * i) = G(i, a) * Q.col(b) + G(i, b) * Q.col(a);
+      Eigen::Matrix<double, N, 1> Y;
+      for (int r = 0; r < N; ++r) {
+        const int i = active[r] / 3, Jr = active[r] % 3;
+        Y[r] = G(i, a) * Q(Jr, b) + G(i, b) * Q(Jr, a);
+      }
       out.A.noalias() += gamma * Y * Y.transpose();
     }
   }
 
   // Geometric part δ_ik S_JL.
-  for (int i = 0; i < 3; ++i) out.A.block<3, 3>(3 * i, 3 * i) += S;
+  for (int r = 0; r < N; ++r)
+    for (int s = 0; s < N; ++s)
+      if (active[r] / 3 == active[s] / 3) out.A(r, s) += S(active[r] % 3, active[s] % 3);
   return out;
+}
+
+template std::optional<PrincipalStressOn<5>> evaluate_principal<5>(const HyperelasticLaw&, const Mat3&, bool,
+                                                                   const std::array<int, 5>&);
+template std::optional<PrincipalStressOn<9>> evaluate_principal<9>(const HyperelasticLaw&, const Mat3&, bool,
+                                                                   const std::array<int, 9>&);
+
+std::optional<PrincipalStress> evaluate_principal(const HyperelasticLaw& law, const Mat3& F, bool with_tangent) {
+  return evaluate_principal<9>(law, F, with_tangent, kAllComponents);
 }
 
 Mat3 cauchy_stress(const Mat3& P, const Mat3& F) { return P * F.transpose() / F.determinant(); }
