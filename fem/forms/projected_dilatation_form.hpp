@@ -23,6 +23,7 @@
 
 #include "fem/core/parallel.hpp"
 #include "fem/forms/elastic_form.hpp"
+#include "fem/materials/symmetric_eigen3.hpp"
 #include "fem/materials/drucker_stability.hpp"
 #include "fem/materials/principal_stress.hpp"
 
@@ -158,20 +159,20 @@ class ProjectedDilatationForm final : public ElasticForm {
         if (!s || !(J[q] > 0.0) || !(Jv > 0.0)) continue;
         // Stretches of F̄ = (θ/J)^(1/3) F: the kinematics the energy actually sees.
         const Mat3 Fbar = std::cbrt(Jv / J[q]) * F[q];
-        Eigen::SelfAdjointEigenSolver<Mat3> eig(Fbar.transpose() * Fbar, Eigen::EigenvaluesOnly);
-        const double lmax = std::sqrt(eig.eigenvalues()[2]);
+        const Eigen::Vector3d c = ascending_eigenvalues(Fbar.transpose() * Fbar);
+        const double lmax = std::sqrt(c[2]);
         r.max_principal_stretch = std::max(r.max_principal_stretch, lmax);
-        r.min_principal_stretch = std::min(r.min_principal_stretch, std::sqrt(eig.eigenvalues()[0]));
+        r.min_principal_stretch = std::min(r.min_principal_stretch, std::sqrt(c[0]));
         r.max_principal_log_strain = std::max(r.max_principal_log_strain, std::log(lmax));
         // Kirchhoff stress of the principal part over the volume ratio, plus the pressure U'(θ).
         Mat3 sigma = s->P * F[q].transpose() / Jv;
         if (law.has_volumetric_split()) sigma += law.volumetric(Jv).dU * Mat3::Identity();
-        Eigen::SelfAdjointEigenSolver<Mat3> es(sigma, Eigen::EigenvaluesOnly);
-        r.max_principal_cauchy_MPa = std::max(r.max_principal_cauchy_MPa, es.eigenvalues()[2]);
+        const double sigma_max = ascending_eigenvalues(sigma)[2];
+        r.max_principal_cauchy_MPa = std::max(r.max_principal_cauchy_MPa, sigma_max);
         const double dV = reference_[e][q].dV;
         valid_volume += dV;
         stretch_sum += dV * lmax;
-        stress_sum += dV * es.eigenvalues()[2];
+        stress_sum += dV * sigma_max;
         log_strain_sum += dV * std::log(lmax);
       }
       r.dilatation = theta_sum / volume;
@@ -197,9 +198,8 @@ class ProjectedDilatationForm final : public ElasticForm {
         const double J = F.determinant();
         ++out.checked_points;
         if (!(J > 0.0)) continue;  // an inverted point is the element's failure, not the law's
-        Eigen::SelfAdjointEigenSolver<Mat3> eig(F.transpose() * F, Eigen::EigenvaluesOnly);
         // Isochoric log strains ε_a = ln(λ_a J^(-1/3)), summing to zero: the state of w(ε1, ε2).
-        const Eigen::Vector3d eps = 0.5 * eig.eigenvalues().array().log() - std::log(J) / 3.0;
+        const Eigen::Vector3d eps = 0.5 * ascending_eigenvalues(F.transpose() * F).array().log() - std::log(J) / 3.0;
         if (drucker_stable_at(law, eps[2], eps[0])) continue;
         const double stretch = std::exp(eps[2]);
         if (++out.unstable_points == 1 || stretch > out.max_stretch) {

@@ -1,6 +1,7 @@
 #include "fem/materials/symmetric_eigen3.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 namespace softarm::fem {
@@ -35,6 +36,16 @@ bool symmetric_eigen3(const Eigen::Matrix3d& C, Eigen::Vector3d& c, Eigen::Matri
   c = eig.eigenvalues();
   Q = eig.eigenvectors();
   return c.allFinite() && Q.allFinite();
+}
+
+Eigen::Vector3d ascending_eigenvalues(const Eigen::Matrix3d& C) {
+  Eigen::Vector3d c;
+  Eigen::Matrix3d Q;
+  if (symmetric_eigen3(C, c, Q)) {
+    std::sort(c.data(), c.data() + 3);  // the Jacobi path leaves the hoop value last
+    return c;
+  }
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C, Eigen::EigenvaluesOnly).eigenvalues();
 }
 
 }  // namespace softarm::fem

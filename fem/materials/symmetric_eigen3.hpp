@@ -20,4 +20,9 @@ inline constexpr double closed_form_eigenvalue_gap = 1e-3;
 /// False when the solver fails or C is not finite.
 bool symmetric_eigen3(const Eigen::Matrix3d& C, Eigen::Vector3d& c, Eigen::Matrix3d& Q);
 
+/// The eigenvalues of symmetric C, ascending, by symmetric_eigen3's paths (the iterative solver's,
+/// values only, where those fail): for the stretches and stresses the elements report at every Gauss
+/// point.
+Eigen::Vector3d ascending_eigenvalues(const Eigen::Matrix3d& C);
+
 }  // namespace softarm::fem
