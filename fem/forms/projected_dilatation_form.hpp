@@ -23,9 +23,9 @@
 
 #include "fem/core/parallel.hpp"
 #include "fem/forms/elastic_form.hpp"
-#include "fem/materials/symmetric_eigen3.hpp"
 #include "fem/materials/drucker_stability.hpp"
 #include "fem/materials/principal_stress.hpp"
+#include "fem/materials/symmetric_eigen3.hpp"
 
 namespace softarm::fem {
 
