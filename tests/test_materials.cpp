@@ -343,6 +343,15 @@ TEST_CASE("symmetric_eigen3 keeps the iterative solver's accuracy on every path,
     std::sort(sorted.data(), sorted.data() + 3);
     const Eigen::Vector3d reference = Eigen::SelfAdjointEigenSolver<Mat3>(C).eigenvalues();
     CHECK((sorted - reference).cwiseAbs().maxCoeff() <= 1e-14 * scale);
+    CHECK((ascending_eigenvalues(C) - reference).cwiseAbs().maxCoeff() <= 1e-14 * scale);
+  }
+  // The Jacobi path's hoop value comes last; ascending_eigenvalues sorts it wherever it falls.
+  for (const double hoop : {0.2, 1.2, 3.0}) {
+    Mat3 axisymmetric = block;
+    axisymmetric(2, 2) = hoop;
+    const Eigen::Vector3d reference = Eigen::SelfAdjointEigenSolver<Mat3>(axisymmetric).eigenvalues();
+    INFO("hoop " << hoop);
+    CHECK((ascending_eigenvalues(axisymmetric) - reference).cwiseAbs().maxCoeff() <= 1e-14 * axisymmetric.norm());
   }
   Mat3 nan = Mat3::Identity();
   nan(0, 1) = nan(1, 0) = std::nan("");

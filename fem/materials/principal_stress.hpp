@@ -38,9 +38,10 @@ inline constexpr std::array<int, 9> kAllComponents{0, 1, 2, 3, 4, 5, 6, 7, 8};
 /// so that the caller can cut the load step back. No heap allocation.
 std::optional<PrincipalStress> evaluate_principal(const HyperelasticLaw& law, const Mat3& F, bool with_tangent);
 
-/// The same with A only on the components `active` of F, each entry by the same arithmetic as the
-/// full tangent's: an axisymmetric element's F varies in five (F_rr, F_rz, F_zr, F_zz, F_θθ), and
-/// the other 56 of the 81 entries are work it would throw away. Instantiated for N = 5 and 9.
+/// The same with A only on the components `active` of F, each entry by the full tangent's formula
+/// (equal to it within a rounding; for all nine, in order, the same code): an axisymmetric element's
+/// F varies in five (F_rr, F_rz, F_zr, F_zz, F_θθ), and the other 56 of the 81 entries are work it
+/// would throw away. Instantiated for N = 5 and 9.
 template <int N>
 std::optional<PrincipalStressOn<N>> evaluate_principal(const HyperelasticLaw& law, const Mat3& F, bool with_tangent,
                                                        const std::array<int, N>& active);
