@@ -185,10 +185,16 @@ TEST_CASE("the Ogden tube that CalculiX stalls on near 56 kPa is carried on", "[
 }
 
 TEST_CASE("a solver that gives up early reports a stall, not a burst", "[rra][limit]") {
-  // Newton limited to four iterations per step and little room to cut back: the path stops
-  // far below any limit point, and must say so.
+  // Newton limited to four iterations per step, a small first step, then one that grows tenfold and
+  // little room to cut back: the path stops far below any limit point, and must say so. (With the
+  // steps' defaults the thesis RRA converges within four iterations a step once its first step is
+  // cut back: the tenfold step is the one that fails.)
   auto spec = thesis_rra(1);
   spec.path.newton.max_iterations = 4;
+  spec.path.steps.initial_increment = 0.025;
+  spec.path.steps.growth = 10;
+  spec.path.steps.max_increment = 0.5;
+  spec.path.steps.cutback = 0.05;
   spec.path.steps.min_increment = 0.02;
   const auto r = run_rra_scene(spec);
   INFO(r.path.diagnosis);

@@ -186,6 +186,77 @@ TEST_CASE("Newton stops at a round-off floor instead of iterating on it", "[solv
 }
 
 namespace {
+/// A linear spring of stiffness k from dof d to a fixed anchor: energy k (x_d − anchor)² / 2.
+class AnchorSpring : public Form {
+ public:
+  AnchorSpring(int dof, double anchor, double stiffness) : dof_(dof), anchor_(anchor), k_(stiffness) {}
+  std::string name() const override { return "anchor spring"; }
+  void declare_pattern(SparsePattern& pattern) override { block_ = pattern.declare_block(std::span<const int>(&dof_, 1)); }
+  FormStatus add(const Vector& x, double* value, Vector* gradient, HessianAccumulator* hessian) const override {
+    const double s = x[dof_] - anchor_;
+    if (value) *value += 0.5 * k_ * s * s;
+    if (gradient) (*gradient)[dof_] += k_ * s;
+    if (hessian) hessian->add_block(0, block_, &k_);
+    return FormStatus::fine();
+  }
+
+ private:
+  int dof_, block_ = -1;
+  double anchor_, k_;
+};
+}  // namespace
+
+TEST_CASE("Newton accepts a residual that only the rounding of the positions keeps above its tolerance, at the first settled iterate", "[solver]") {
+  // A spring stiff enough (k = 1e9 of the body's force scale) that one ulp of its dof's position moves
+  // the residual by ~1e-7 of that scale: no position rounds to equilibrium, the residual stops near
+  // 1e-7 (the ABS rings next to silicone, whose floor is near 1e-8). residual_beyond_roundoff takes
+  // 10 ε |K||x| off each entry: nothing is left, and Newton stops at the first iterate whose update
+  // has settled, not one iteration later where the residual shows that it stopped falling.
+  const Mesh grid = Compression::grid();
+  int node = 0;
+  (grid.X.rowwise() - Eigen::RowVector2d(0.5, 0.5)).rowwise().norm().minCoeff(&node);
+  const double scale = [] {
+    Compression plain(0.7);
+    Vector x = plain.problem->reference_positions();
+    LinearSolver s;
+    REQUIRE(follow_load_path(*plain.problem, x, s, {1.0}, no_callbacks(), NewtonSettings{}, StepSettings{}).completed);
+    return plain.problem->evaluate(x, true, false).force_scale();
+  }();
+  const double k = 1e9 * scale;
+  Compression c(0.7, std::make_shared<AnchorSpring>(2 * node, 0.5 + 1.0 / 3.0, k));
+  Vector x = c.problem->reference_positions();
+  LinearSolver solver;
+  NewtonSettings settings;
+  StepSettings steps;
+  steps.verbose = false;
+  REQUIRE(follow_load_path(*c.problem, x, solver, {1.0}, no_callbacks(), settings, steps).completed);
+  // From there, the body's other dofs nudged by 3e-4 (the spring's dof left where it is, so that the
+  // first residual is the body's): Newton again.
+  Vector nudge = Vector::LinSpaced(x.size(), -1.0, 1.0);
+  c.problem->zero_prescribed(nudge);
+  nudge[2 * node] = 0;
+  x += 3e-4 / nudge.norm() * nudge;
+  const NewtonReport report = solve_newton(*c.problem, x, solver, settings);
+  CAPTURE(report.iterations, report.message);
+  REQUIRE(report.converged);
+  const Evaluation e = c.problem->evaluate(x, true, true);
+  const double reference = std::max(e.force_scale(), scale);
+  INFO("residual " << e.gradient.norm() / reference << ", beyond the floor "
+                   << residual_beyond_roundoff(e.hessian, x, e.gradient) / reference);
+  CHECK(e.gradient.norm() > settings.residual_tolerance * reference);  // above the tolerance: the floor
+  CHECK(residual_beyond_roundoff(e.hessian, x, e.gradient) <= settings.residual_tolerance * reference);
+  // Stopped where the residual was still falling (by more than half from the iterate before): no
+  // iteration spent on showing the floor.
+  REQUIRE(report.rows.size() >= 2);
+  CHECK(report.rows.back().residual < 0.5 * report.rows[report.rows.size() - 2].residual);
+  // And the state is converged: one more Newton step moves it by less than the update tolerance.
+  REQUIRE(solver.factorize(e.hessian) == LinearSolver::Status::positive_definite);
+  Vector dx = -solver.solve(e.gradient);
+  c.problem->zero_prescribed(dx);
+  CHECK(dx.norm() / (x - c.problem->reference_positions()).norm() < settings.update_tolerance);
+}
+
+namespace {
 // The cylinder compressed to 70 % in one Newton solve, from the affine squash (no bulge), with a
 // double-well spring on the axial dof of the node at (r, z) = (0.5, 0.5), whose maximum is the
 // mid-plane, z = 0.35 after the squash; the spring's dof starts s0 above it. At s0 = 0 the start and

@@ -5,6 +5,8 @@
 // either the update normalised by the displacement, or the error that the last
 // two full steps' contraction leaves at most (remaining_error.hpp), within the
 // update tolerance, or the energy norm |δx·r| normalised by its first value;
+// or the same with the residual within its tolerance once the floor that rounding
+// the positions leaves is taken off (residual_beyond_roundoff, near the tolerance);
 // or, when the residual sits on its round-off floor, update and energy norm
 // both below tolerance, or the update below
 // tolerance and the residual no longer falling, within 100× its tolerance, or beyond the floor that
@@ -21,9 +23,10 @@ namespace softarm::fem {
 
 /// What of the residual r at positions x (tangent K) the round-off floor cannot explain:
 /// ‖ max(|r| − kRoundoffFloorFactor ε |K| |x|, 0) ‖, entrywise (summation and the constitutive
-/// evaluation add to the ulp of each position, hence the factor). Newton accepts a residual that has
-/// stopped falling once its full step is below the update tolerance and this is within 100× the
-/// residual tolerance.
+/// evaluation add to the ulp of each position, hence the factor). Newton accepts a residual within
+/// 100× its tolerance whose part beyond this is within the tolerance, once the state has settled by
+/// the update criteria; and one that has stopped falling once its full step is below the update
+/// tolerance and this is within 100× the residual tolerance.
 inline constexpr double kRoundoffFloorFactor = 10.0;
 double residual_beyond_roundoff(const SparseMatrix& K, const Vector& x, const Vector& r);
 
