@@ -419,6 +419,26 @@ TEST_CASE("the predictor takes the cubic only where it agrees with the parabola"
   CHECK(predict_with_slope({0.2, 0.35, 0.4}, {&x0, &x1, &x2}, not_finite, 0.55) == parabola);
 }
 
+TEST_CASE("the second step's parabola with the path's slope reproduces a parabolic path, and is refused where it disagrees with the secant", "[solver]") {
+  // x(λ) = a + bλ + cλ² at two levels with its slope at the second: exact; the secant is off by
+  // c(λ − l0)(λ − l1). A slope far from the path's (next to a limit point) puts the parabola more
+  // than kSecondStepAgreement of the secant's step away: the secant is returned, bit for bit, and so
+  // where the slope is not finite.
+  const Vector a = Vector::LinSpaced(5, 1.0, 2.0), b = Vector::LinSpaced(5, -3.0, 4.0), c = Vector::LinSpaced(5, 0.5, 9.0);
+  const auto path = [&](double l) -> Vector { return a + l * b + l * l * c; };
+  const Vector true_slope = b + 2 * 0.35 * c;
+  const Vector x0 = path(0.2), x1 = path(0.35), exact = path(0.5);
+  CHECK((extrapolate_second_step({0.2, 0.35}, {&x0, &x1}, true_slope, 0.5) - exact).norm() < 1e-12 * exact.norm());
+  const Vector secant = extrapolate_state({0.2, 0.35}, {&x0, &x1}, 0.5);
+  CHECK((secant - exact + (0.5 - 0.2) * (0.5 - 0.35) * c).norm() < 1e-12 * exact.norm());
+  const Vector taken = predict_second_step({0.2, 0.35}, {&x0, &x1}, true_slope, 0.5);
+  CHECK((taken - exact).norm() < 1e-12 * exact.norm());
+  CHECK(predict_second_step({0.2, 0.35}, {&x0, &x1}, 20 * true_slope, 0.5) == secant);
+  Vector not_finite = true_slope;
+  not_finite[1] = std::nan("");
+  CHECK(predict_second_step({0.2, 0.35}, {&x0, &x1}, not_finite, 0.5) == secant);
+}
+
 TEST_CASE("load stepper cuts back after a failure and still reaches the end", "[solver]") {
   Compression c(0.4);
   Vector x = c.problem->reference_positions();

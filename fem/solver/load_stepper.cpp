@@ -46,6 +46,24 @@ Vector extrapolate_with_slope(const std::array<double, 3>& levels, const std::ar
   return x2 + s * slope + (s * s) * a + (s * s * s) * b;
 }
 
+Vector extrapolate_second_step(const std::array<double, 2>& levels, const std::array<const Vector*, 2>& states,
+                               const Vector& slope, double target) {
+  // With s measured from l1, x0 − x1 − t1 s0 = a s0².
+  const double s0 = levels[0] - levels[1], s = target - levels[1];
+  const Vector& x1 = *states[1];
+  const Vector a = (*states[0] - x1 - s0 * slope) / (s0 * s0);
+  return x1 + s * slope + (s * s) * a;
+}
+
+Vector predict_second_step(const std::array<double, 2>& levels, const std::array<const Vector*, 2>& states,
+                           const Vector& slope, double target) {
+  Vector secant = extrapolate_state({levels[0], levels[1]}, {states[0], states[1]}, target);
+  Vector parabola = extrapolate_second_step(levels, states, slope, target);
+  if (parabola.allFinite() && (parabola - secant).norm() <= kSecondStepAgreement * (secant - *states[1]).norm())
+    return parabola;
+  return secant;
+}
+
 Vector predict_with_slope(const std::array<double, 3>& levels, const std::array<const Vector*, 3>& states,
                           const Vector& slope, double target) {
   Vector parabola = extrapolate_state({levels[0], levels[1], levels[2]}, {states[0], states[1], states[2]}, target);
@@ -170,6 +188,8 @@ class PathFollower {
         return predict_with_slope({older_level_, previous_level_, level_}, {&older_x_, &previous_x_, &x_}, slope_, next);
       return extrapolate_state({older_level_, previous_level_, level_}, {&older_x_, &previous_x_, &x_}, next);
     }
+    if (slope_.size() == x_.size())
+      return predict_second_step({previous_level_, level_}, {&previous_x_, &x_}, slope_, next);
     return extrapolate_state({previous_level_, level_}, {&previous_x_, &x_}, next);
   }
 
