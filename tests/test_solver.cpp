@@ -226,10 +226,8 @@ TEST_CASE("Newton accepts a residual that only the rounding of the positions kee
   Compression c(0.7, std::make_shared<AnchorSpring>(2 * node, 0.5 + 1.0 / 3.0, k));
   Vector x = c.problem->reference_positions();
   LinearSolver solver;
-  NewtonSettings settings;
-  StepSettings steps;
-  steps.verbose = false;
-  REQUIRE(follow_load_path(*c.problem, x, solver, {1.0}, no_callbacks(), settings, steps).completed);
+  const NewtonSettings settings;
+  REQUIRE(follow_load_path(*c.problem, x, solver, {1.0}, no_callbacks(), settings, StepSettings{}).completed);
   // From there, the body's other dofs nudged by 3e-4 (the spring's dof left where it is, so that the
   // first residual is the body's): Newton again.
   Vector nudge = Vector::LinSpaced(x.size(), -1.0, 1.0);
