@@ -55,22 +55,27 @@ Vector extrapolate_second_step(const std::array<double, 2>& levels, const std::a
   return x1 + s * slope + (s * s) * a;
 }
 
+namespace {
+/// The prediction with the path's slope where it is finite and lies within `agreement` of the step
+/// the one without it takes from `last` (the newest converged state), else the one without.
+Vector agreeing_or_plain(Vector with_slope, Vector plain, const Vector& last, double agreement) {
+  if (with_slope.allFinite() && (with_slope - plain).norm() <= agreement * (plain - last).norm()) return with_slope;
+  return plain;
+}
+}  // namespace
+
 Vector predict_second_step(const std::array<double, 2>& levels, const std::array<const Vector*, 2>& states,
                            const Vector& slope, double target) {
-  Vector secant = extrapolate_state({levels[0], levels[1]}, {states[0], states[1]}, target);
-  Vector parabola = extrapolate_second_step(levels, states, slope, target);
-  if (parabola.allFinite() && (parabola - secant).norm() <= kSecondStepAgreement * (secant - *states[1]).norm())
-    return parabola;
-  return secant;
+  return agreeing_or_plain(extrapolate_second_step(levels, states, slope, target),
+                           extrapolate_state({levels[0], levels[1]}, {states[0], states[1]}, target), *states[1],
+                           kSecondStepAgreement);
 }
 
 Vector predict_with_slope(const std::array<double, 3>& levels, const std::array<const Vector*, 3>& states,
                           const Vector& slope, double target) {
-  Vector parabola = extrapolate_state({levels[0], levels[1], levels[2]}, {states[0], states[1], states[2]}, target);
-  Vector cubic = extrapolate_with_slope(levels, states, slope, target);
-  if (cubic.allFinite() && (cubic - parabola).norm() <= kSlopePredictorAgreement * (parabola - *states[2]).norm())
-    return cubic;
-  return parabola;
+  return agreeing_or_plain(extrapolate_with_slope(levels, states, slope, target),
+                           extrapolate_state({levels[0], levels[1], levels[2]}, {states[0], states[1], states[2]}, target),
+                           *states[2], kSlopePredictorAgreement);
 }
 
 namespace {

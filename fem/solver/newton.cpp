@@ -61,10 +61,16 @@ bool settled(const IterateHistory& h, int it, double rel_res, const Evaluation& 
   const bool update_ok = h.last_update <= settings.update_tolerance;
   const bool energy_ok = h.last_energy_norm <= settings.energy_tolerance;
   const bool stalled = it >= 2 && rel_res > 0.5 * h.previous_residual;
+  // What of the residual the round-off floor cannot explain: a pass over K, made at most once and
+  // only where a rule below asks for it.
+  double beyond = -1;
+  const auto beyond_floor = [&] {
+    if (beyond < 0) beyond = residual_beyond_roundoff(cur.hessian, x, cur.gradient);
+    return beyond;
+  };
   const bool at_floor =
       stalled && ((update_ok && rel_res <= 100 * settings.residual_tolerance) ||
-                  (h.last_newton_step <= settings.update_tolerance &&
-                   residual_beyond_roundoff(cur.hessian, x, cur.gradient) <= 100 * settings.residual_tolerance * h.scale));
+                  (h.last_newton_step <= settings.update_tolerance && beyond_floor() <= 100 * settings.residual_tolerance * h.scale));
   // The update criterion asks that the state be within update_tolerance of equilibrium; where the
   // last two full steps contract, the bound on what is left (remaining_error.hpp) says so one
   // iteration before the update itself falls below it. The thesis RRA's steps past 165 kPa: 2
@@ -78,8 +84,7 @@ bool settled(const IterateHistory& h, int it, double rel_res, const Evaluation& 
   // floor then needs no iteration that only shows it. Near the residual tolerance only (100×), as
   // at_floor. The thesis RRA's first step: 2.9e-8 relative after its fifth iteration, 5.5e-10 of it
   // beyond the floor, where a sixth iteration found 2.7e-8 and an update of 1e-11.
-  if (settled_state && rel_res <= 100 * settings.residual_tolerance &&
-      residual_beyond_roundoff(cur.hessian, x, cur.gradient) <= settings.residual_tolerance * h.scale)
+  if (settled_state && rel_res <= 100 * settings.residual_tolerance && beyond_floor() <= settings.residual_tolerance * h.scale)
     return true;
   return (update_ok && energy_ok) || at_floor;
 }
