@@ -23,6 +23,7 @@
 #include "fem/elements/serendipity_quad.hpp"
 #include "fem/forms/chamber_pressure_form.hpp"
 #include "fem/forms/make_elastic_form.hpp"
+#include "fem/forms/mean_displacement_form.hpp"
 #include "fem/forms/periodic_face_form.hpp"
 #include "fem/forms/plane_face_form.hpp"
 #include "fem/mesh/chamber_lids.hpp"
@@ -30,6 +31,7 @@
 #include "fem/mesh/serendipity_mesh.hpp"
 #include "fem/mesh/structured_mesh.hpp"
 #include "fem/solver/load_stepper.hpp"
+#include "fem/solver/lowest_modes.hpp"
 #include "support/form_checks.hpp"
 #include "support/test_problems.hpp"
 #include "support/tube_meshes.hpp"
@@ -233,6 +235,131 @@ TEST_CASE("Plane face form: gradient and Hessian match finite differences", "[so
   for (int n : top) on_plane[3 * n + 2] = 1.0 + 0.05 - 0.2 * x[3 * n] + 0.15 * x[3 * n + 1];
   CHECK(plane->max_gap(on_plane) < 1e-15);
   CHECK(problem.evaluate(on_plane, true, false).gradient.norm() < 1e-13);
+}
+
+TEST_CASE("Plane face form referenced to a node: derivatives match finite differences, translations cost nothing",
+          "[solid3d][cell]") {
+  const Mesh mesh = box({2, 1, 1}, 2, 1, 1, 1.0, 20);
+  std::vector<int> top;
+  for (int n = 0; n < mesh.num_nodes(); ++n)
+    if (mesh.X(n, 2) == 1.0) top.push_back(n);
+  const int pilot = mesh.num_nodes(), reference = 0;  // a bottom corner
+  Vector X(3 * (pilot + 1));
+  X << flattened_positions(mesh), 0.0, 0.0, 0.0;
+  EnergyProblem problem(X, DirichletConstraints{});
+  auto plane = std::make_shared<PlaneFaceForm>(top, pilot, 1.0, 3.7, reference,
+                                               mesh.X.row(reference).head<2>().transpose());
+  problem.add_form(plane);
+  problem.finalize();
+  Vector x = test::perturbed(X, 0.1);
+  x.tail<3>() << 0.05, -0.2, 0.15;
+  const auto err = test::finite_difference_errors(problem, x, 1e-6);
+  INFO("gradient error " << err.gradient << ", Hessian error " << err.hessian);
+  CHECK(err.gradient < 1e-6);
+  CHECK(err.hessian < 1e-6);
+  // Every node moved by (0.3, −0.7) in-plane, the pilot kept: the same energy and gradient.
+  Vector shifted = x;
+  for (int n = 0; n < pilot; ++n) shifted.segment<2>(3 * n) += Eigen::Vector2d(0.3, -0.7);
+  const Evaluation e0 = problem.evaluate(x, true, false), e1 = problem.evaluate(shifted, true, false);
+  CHECK(e1.energy == Approx(e0.energy).epsilon(1e-12));
+  CHECK((e1.gradient - e0.gradient).norm() <= 1e-12 * e0.gradient.norm());
+}
+
+TEST_CASE("Mean displacement hold: derivatives match finite differences", "[solid3d][cell]") {
+  const Vector X = Vector::LinSpaced(12, -1.0, 2.0);
+  EnergyProblem problem(X, DirichletConstraints{});
+  auto hold = std::make_shared<MeanDisplacementForm>(std::vector<int>{1, 4, 7, 10}, std::vector<double>{X[1], X[4], X[7], X[10]}, 2.5);
+  problem.add_form(hold);
+  problem.finalize();
+  const Vector x = test::perturbed(X, 0.3);
+  const auto err = test::finite_difference_errors(problem, x, 1e-6);
+  INFO("gradient error " << err.gradient << ", Hessian error " << err.hessian);
+  CHECK(err.gradient < 1e-6);
+  CHECK(err.hessian < 1e-6);
+  const double m = (x[1] - X[1] + x[4] - X[4] + x[7] - X[7] + x[10] - X[10]) / 4;
+  CHECK(hold->mean_displacement(x) == Approx(m).epsilon(1e-14));
+  CHECK(problem.evaluate(x, false, false).energy == Approx(0.5 * 2.5 * m * m).epsilon(1e-14));
+}
+
+TEST_CASE("A half cell's in-plane translation held by its face's mean: no force at equilibrium, no soft mode",
+          "[solid3d][cell]") {
+  // Half of a squat 8 × 8 × 2 mm block (y ≥ 0, the mirror plane y = 0 held in y), like a ring-pitch
+  // cell: bottom held in z, the top face on a plane referenced to the bottom node at (4, 0, 0), a
+  // stretching force on the plane's offset a and a moment on its slope b. Its x translation held at
+  // that node, as the cells once were, or by the bottom face's mean x displacement.
+  const Mesh mesh = box({8, 4, 2}, 8, 4, 2, 0.0, 20);
+  const int pilot = mesh.num_nodes();
+  int centre = -1;
+  std::vector<int> top, bottom;
+  for (int n = 0; n < pilot; ++n) {
+    if (mesh.X(n, 2) == 2.0) top.push_back(n);
+    if (mesh.X(n, 2) == 0.0) bottom.push_back(n);
+    if ((mesh.X.row(n) - Eigen::RowVector3d(4, 0, 0)).norm() < 1e-12) centre = n;
+  }
+  REQUIRE(centre >= 0);
+  Vector X(3 * (pilot + 1));
+  X << flattened_positions(mesh), 0.0, 0.0, 0.0;
+  LoadState load;
+  enum class Hold { pin, mean, none };
+  const auto make = [&](Hold hold, bool referenced) {
+    DirichletConstraints bc;
+    for (int n : bottom) bc.fix(3 * n + 2);
+    for (int n : mesh.node_sets.at("y0")) bc.fix(3 * n + 1);
+    bc.fix(3 * pilot + 2);
+    if (hold == Hold::pin) bc.fix(3 * centre);
+    auto p = std::make_unique<EnergyProblem>(X, bc);
+    const double mu = 0.1;  // MPa
+    p->add_form(make_elastic_form(mesh, {test::neo_hookean(mu, 100 * mu)}, VolumetricTreatment::projected_dilatation));
+    p->add_form(referenced ? std::make_shared<PlaneFaceForm>(top, pilot, 2.0, 1e4 * mu, centre, Eigen::Vector2d(4, 0))
+                           : std::make_shared<PlaneFaceForm>(top, pilot, 2.0, 1e4 * mu));
+    if (hold == Hold::mean) {
+      std::vector<int> dofs;
+      std::vector<double> reference;
+      for (int n : bottom) dofs.push_back(3 * n), reference.push_back(mesh.X(n, 0));
+      p->add_form(std::make_shared<MeanDisplacementForm>(dofs, reference, mu * bottom.size()));
+    }
+    p->add_form(std::make_shared<DofLoadForm>(std::vector<int>{3 * pilot, 3 * pilot + 1}, std::vector<double>{0.2, 0.5}, load));
+    p->finalize();
+    return p;
+  };
+  const PathCallbacks ramp{[&](double level) { load.gravity_scale = level; }, {}};
+  const auto pinned = make(Hold::pin, true), held = make(Hold::mean, true);
+  const Vector xp = solve(*pinned, {1.0}, ramp), xm = solve(*held, {1.0}, ramp);
+  const double scale = pinned->evaluate(xp, true, false).force_scale();
+  // The same plane (a, b) either way: the cells' readings.
+  CHECK(xm[3 * pilot] == Approx(xp[3 * pilot]).epsilon(1e-7));
+  CHECK(xm[3 * pilot + 1] == Approx(xp[3 * pilot + 1]).epsilon(1e-7));
+  // The pin carries no force: the pinned state moved by minus its bottom face's mean x displacement
+  // is the mean-held problem's equilibrium, the formerly pinned dof included.
+  double t = 0;
+  for (int n : bottom) t += (xp[3 * n] - X[3 * n]) / static_cast<double>(bottom.size());
+  Vector moved = xp;
+  for (int n = 0; n < pilot; ++n) moved[3 * n] -= t;
+  Vector g = held->evaluate(moved, true, false).gradient;
+  held->zero_prescribed(g);
+  INFO("force scale " << scale << " N, slope " << xp[3 * pilot + 1] << ", translation " << t << " mm");
+  CHECK(g.norm() < 1e-7 * scale);
+  // Against a plane whose origin stays at x = 0 the pin carries the axial force times the slope
+  // (the gradient's x component there, the force on the body being its negative).
+  const auto unreferenced = make(Hold::pin, false);
+  const Vector xu = solve(*unreferenced, {1.0}, ramp);
+  const double reaction = make(Hold::none, false)->evaluate(xu, true, false).gradient[3 * centre];
+  INFO("the unreferenced plane's pin: " << reaction << " N");
+  CHECK(std::abs(reaction - 0.2 * xu[3 * pilot + 1]) < 1e-3 * std::abs(reaction));
+  // The tangent's two lowest eigenvalues at the loaded state: one node holding the translation
+  // leaves it far softer than the block's softest deformation; the mean does not.
+  const auto lowest = [](const EnergyProblem& problem, const Vector& x) {
+    const Evaluation e = problem.evaluate(x, false, true);
+    LinearSolver solver;
+    REQUIRE(solver.factorize(e.hessian) == LinearSolver::Status::positive_definite);
+    const LowestModes m = lowest_modes(solver, e.hessian, problem.is_prescribed(), 2, 200, 1e-10);
+    REQUIRE(m.converged);
+    return m.eigenvalues;
+  };
+  const std::vector<double> lp = lowest(*pinned, xp), lm = lowest(*held, xm);
+  INFO("pinned: " << lp[0] << ", " << lp[1] << " N/mm; held by the mean: " << lm[0] << ", " << lm[1] << " N/mm");
+  CHECK(lp[0] < 0.1 * lp[1]);
+  CHECK(lm[0] > 0.5 * lp[1]);
 }
 
 TEST_CASE("Periodic face form: derivatives match finite differences, and a uniform twist and stretch cost nothing",

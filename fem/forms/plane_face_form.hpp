@@ -19,6 +19,14 @@
 // ∂²/∂b∂x_i = ∂²/∂c∂y_i = −1.
 // k of 10⁴ times the face's stiffest shear modulus times 1 mm holds the plane to
 // ~10⁻³ of the face's displacement (test_tca_cell.cpp) without spoiling Cholesky.
+//
+// With a reference node r, the plane's origin follows r's in-plane displacement
+// u = (x_r − X_r, y_r − Y_r):  g_i = z_i − z0 − a − b·(x_i − u_x) − c·(y_i − u_y),
+// adding ∂x_r: b, ∂y_r: c to ∇g_i and ∂²/∂b∂x_r = ∂²/∂c∂y_r = +1. a is then the
+// plane's height at the axis carried along with r, and translating the whole body
+// in x, y leaves every g_i as it was: the translation costs nothing and couples to
+// nothing, so a mean can hold it (mean_displacement_form.hpp). Without r the plane's
+// origin stays at x = y = 0, and a translation of the body must shift a by −b·t.
 #include <vector>
 
 #include "fem/forms/form.hpp"
@@ -30,6 +38,10 @@ class PlaneFaceForm : public Form {
   /// `face_nodes` follow the plane; the pilot's x, y, z dofs are a (mm), b and c (mm/mm);
   /// `z0` is the face's reference height; `penalty` k in N/mm per node.
   PlaneFaceForm(std::vector<int> face_nodes, int pilot_node, double z0, double penalty);
+  /// The same, with the plane's origin following node `reference_node`, whose reference
+  /// position has the in-plane coordinates `reference_xy` (mm).
+  PlaneFaceForm(std::vector<int> face_nodes, int pilot_node, double z0, double penalty, int reference_node,
+                Eigen::Vector2d reference_xy);
   std::string name() const override { return "plane face"; }
   void declare_pattern(SparsePattern& pattern) override;
   FormStatus add(const Vector& x, double* value, Vector* gradient, HessianAccumulator* hessian) const override;
@@ -41,7 +53,10 @@ class PlaneFaceForm : public Form {
   std::vector<int> nodes_;
   int pilot_;
   double z0_, k_;
-  double gap(const Vector& x, int node) const;  // g_i
+  int reference_ = -1;  // r, or −1: the origin fixed
+  Eigen::Vector2d reference_xy_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d origin(const Vector& x) const;  // u, or zero
+  double gap(const Vector& x, int node) const;   // g_i
   std::vector<int> blocks_;
 };
 
