@@ -97,7 +97,10 @@ void build_cell_problem(const TcaSceneSpec& spec, int ring, const CellEndLoad& e
   for (int n : mesh.node_sets.at("bottom")) bc.fix(3 * n + 2);
   if (const auto it = mesh.node_sets.find("symmetry"); it != mesh.node_sets.end())
     for (int n : it->second) bc.fix(3 * n + 1);
-  hold_in_plane_rigid_motion(mesh, mesh.node_sets.at("bottom"), out.model.half, bc);
+  const double mu = stiffest_silicone_shear_modulus(mesh, cell.materials);
+  // The top face's plane follows the bottom face's centre node in x, y: the cell's energy is then
+  // invariant under in-plane translation, which the bottom face's mean displacement holds.
+  const InPlaneHold hold = hold_in_plane_rigid_motion(mesh, mesh.node_sets.at("bottom"), out.model.half, mu, bc);
   if (out.model.half) bc.fix(3 * pilot + 2);  // no slope across the mirror plane
   cell.problem = std::make_unique<EnergyProblem>(X, bc);
   EnergyProblem& problem = *cell.problem;
@@ -105,8 +108,9 @@ void build_cell_problem(const TcaSceneSpec& spec, int ring, const CellEndLoad& e
                                    hex20_integration(mesh, spec.integration));
   out.element_name = elastic->element_name();
   problem.add_form(elastic);
-  const double mu = stiffest_silicone_shear_modulus(mesh, cell.materials);
-  cell.plane = std::make_shared<PlaneFaceForm>(mesh.node_sets.at("top"), pilot, out.pitch_mm, kPlanePenaltyRatio * mu);
+  for (const auto& form : hold.forms) problem.add_form(form);
+  cell.plane = std::make_shared<PlaneFaceForm>(mesh.node_sets.at("top"), pilot, out.pitch_mm, kPlanePenaltyRatio * mu,
+                                               hold.centre, mesh.X.row(hold.centre).head<2>().transpose());
   problem.add_form(cell.plane);
   if (spec.newton.rotate_stiff_parts) problem.set_stiff_inclusions(stiff_parts(mesh, cell.materials));
   cell.load.chamber_pressure_MPa.assign(mesh.chambers.size(), 0.0);

@@ -20,10 +20,10 @@ EndFaceSupport tca_scene_end_support(TcaEnd end) {
 
 namespace {
 /// The end cell's supports: a bonded end face clamped (and, in a half model, the cut's pilot held from
-/// sloping across the mirror plane), or a free end face with the cut held on its rest plane, moving only
-/// rigidly within it; the mirror plane's normal displacement fixed either way.
-DirichletConstraints end_cell_constraints(const Mesh& mesh, int pilot, bool bonded, bool half, const std::string& end_set,
-                                          const std::string& cut_set) {
+/// sloping across the mirror plane), or a free end face with the cut held on its rest plane, its in-plane
+/// rigid motion held by `hold`'s forms; the mirror plane's normal displacement fixed either way.
+DirichletConstraints end_cell_constraints(const Mesh& mesh, int pilot, bool bonded, bool half, double mu,
+                                          const std::string& end_set, const std::string& cut_set, InPlaneHold& hold) {
   DirichletConstraints bc;
   if (bonded) {
     bc = clamped_with_symmetry(mesh, end_set);
@@ -33,7 +33,7 @@ DirichletConstraints end_cell_constraints(const Mesh& mesh, int pilot, bool bond
   if (const auto it = mesh.node_sets.find("symmetry"); it != mesh.node_sets.end())
     for (int n : it->second) bc.fix(3 * n + 1);
   for (int d = 0; d < 3; ++d) bc.fix(3 * pilot + d);  // the cut stays on its rest plane
-  hold_in_plane_rigid_motion(mesh, mesh.node_sets.at(cut_set), half, bc);
+  hold = hold_in_plane_rigid_motion(mesh, mesh.node_sets.at(cut_set), half, mu, bc);
   return bc;
 }
 
@@ -112,13 +112,15 @@ TcaEndCellResult run_tca_end_cell(const TcaSceneSpec& spec, TcaEnd end, int ring
   const int pilot = mesh.num_nodes();
   Vector X = Vector::Zero(3 * (pilot + 1));
   X.head(3 * pilot) = flattened_positions(mesh);
-  EnergyProblem problem(X, end_cell_constraints(mesh, pilot, bonded, out.model.half, end_set, cut_set));
+  const double mu = stiffest_silicone_shear_modulus(mesh, materials);
+  InPlaneHold hold;
+  EnergyProblem problem(X, end_cell_constraints(mesh, pilot, bonded, out.model.half, mu, end_set, cut_set, hold));
   auto elastic = make_elastic_form(mesh, materials, VolumetricTreatment::projected_dilatation,
                                    hex20_integration(mesh, spec.integration));
   out.element_name = elastic->element_name();
   problem.add_form(elastic);
+  for (const auto& form : hold.forms) problem.add_form(form);
   const double cut_z = top ? spec.design.actuator.length_mm - out.length_mm : out.length_mm;
-  const double mu = stiffest_silicone_shear_modulus(mesh, materials);
   problem.add_form(std::make_shared<PlaneFaceForm>(mesh.node_sets.at(cut_set), pilot, cut_z, kPlanePenaltyRatio * mu));
   if (spec.newton.rotate_stiff_parts) problem.set_stiff_inclusions(stiff_parts(mesh, materials));
   LoadState load;
