@@ -3,8 +3,10 @@
 // free of the end caps, the clamp and the taper. One ring pitch about ring k, as a
 // prism of the section at the ring's centre (tca_mesher.hpp, mesh_tca_cell), with
 // its chambers closed by lids on the cut faces (chamber_lids.hpp). The bottom face
-// stays on z = 0 and the top face on a plane z = L + a + b·x + c·y
-// (plane_face_form.hpp); their in-plane motion is free. By the cell's mirror symmetry
+// stays on z = 0 and the top face on a plane z = L + a + b·(x − u_x) + c·(y − u_y), u the
+// in-plane displacement of the bottom face's centre node (plane_face_form.hpp); their
+// in-plane motion is free, its rigid part held by the bottom face's mean displacement
+// (cell_supports.hpp), which then carries no force. By the cell's mirror symmetry
 // about its mid-plane this is a slice of a long, uniformly bent and stretched 3CA:
 // the homogenised beam of Buannic & Cartraud (2001) at the scale of one ring.
 //
