@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <span>
 
 namespace softarm::fem {
 
@@ -17,46 +18,47 @@ PlaneFaceForm::PlaneFaceForm(std::vector<int> face_nodes, int pilot_node, double
       reference_(reference_node),
       reference_xy_(reference_xy) {}
 
+std::array<int, 8> PlaneFaceForm::block_dofs(int n) const {
+  return {3 * n, 3 * n + 1, 3 * n + 2, 3 * pilot_, 3 * pilot_ + 1, 3 * pilot_ + 2, 3 * reference_, 3 * reference_ + 1};
+}
+
 void PlaneFaceForm::declare_pattern(SparsePattern& pattern) {
   blocks_.clear();
-  // Per face node: its x, y, z, then a, b, c, then the reference node's x, y.
   for (int n : nodes_) {
-    std::vector<int> dofs = {3 * n, 3 * n + 1, 3 * n + 2, 3 * pilot_, 3 * pilot_ + 1, 3 * pilot_ + 2};
-    if (reference_ >= 0) dofs.insert(dofs.end(), {3 * reference_, 3 * reference_ + 1});
-    blocks_.push_back(pattern.declare_block(dofs));
+    const std::array<int, 8> dofs = block_dofs(n);
+    blocks_.push_back(pattern.declare_block(std::span<const int>(dofs.data(), block_size())));
   }
 }
 
+PlaneFaceForm::Plane PlaneFaceForm::plane(const Vector& x) const {
+  Plane p{x[3 * pilot_], x[3 * pilot_ + 1], x[3 * pilot_ + 2], Eigen::Vector2d::Zero()};
+  if (reference_ >= 0) p.origin = Eigen::Vector2d(x[3 * reference_], x[3 * reference_ + 1]) - reference_xy_;
+  return p;
+}
+
+double PlaneFaceForm::gap(const Vector& x, int n, const Plane& p) const {
+  return x[3 * n + 2] - z0_ - p.a - p.b * (x[3 * n] - p.origin.x()) - p.c * (x[3 * n + 1] - p.origin.y());
+}
+
 double PlaneFaceForm::max_gap(const Vector& x) const {
+  const Plane p = plane(x);
   double gap = 0;
-  for (int n : nodes_) gap = std::max(gap, std::abs(this->gap(x, n)));
+  for (int n : nodes_) gap = std::max(gap, std::abs(this->gap(x, n, p)));
   return gap;
 }
 
-Eigen::Vector2d PlaneFaceForm::origin(const Vector& x) const {
-  if (reference_ < 0) return Eigen::Vector2d::Zero();
-  return Eigen::Vector2d(x[3 * reference_], x[3 * reference_ + 1]) - reference_xy_;
-}
-
-double PlaneFaceForm::gap(const Vector& x, int n) const {
-  const double a = x[3 * pilot_], b = x[3 * pilot_ + 1], c = x[3 * pilot_ + 2];
-  const Eigen::Vector2d u = origin(x);
-  return x[3 * n + 2] - z0_ - a - b * (x[3 * n] - u.x()) - c * (x[3 * n + 1] - u.y());
-}
-
 FormStatus PlaneFaceForm::add(const Vector& x, double* value, Vector* gradient, HessianAccumulator* hessian) const {
-  const double b = x[3 * pilot_ + 1], c = x[3 * pilot_ + 2];
-  const Eigen::Vector2d u = origin(x);
-  const int m = reference_ >= 0 ? 8 : 6;  // the block's size
+  const Plane p = plane(x);
+  const int m = block_size();
   for (std::size_t k = 0; k < nodes_.size(); ++k) {
     const int n = nodes_[k];
-    const double g = gap(x, n);
+    const double g = gap(x, n, p);
     // ∂g/∂(x_i, y_i, z_i, a, b, c[, x_r, y_r])
-    const std::array<double, 8> dg = {-b, -c, 1.0, -1.0, -(x[3 * n] - u.x()), -(x[3 * n + 1] - u.y()), b, c};
+    const std::array<double, 8> dg = {
+        -p.b, -p.c, 1.0, -1.0, -(x[3 * n] - p.origin.x()), -(x[3 * n + 1] - p.origin.y()), p.b, p.c};
     if (value) *value += 0.5 * k_ * g * g;
     if (gradient) {
-      const std::array<int, 8> dofs = {3 * n,          3 * n + 1,      3 * n + 2,         3 * pilot_,
-                                       3 * pilot_ + 1, 3 * pilot_ + 2, 3 * reference_, 3 * reference_ + 1};
+      const std::array<int, 8> dofs = block_dofs(n);
       for (int i = 0; i < m; ++i) (*gradient)[dofs[i]] += k_ * g * dg[i];
     }
     if (hessian) {

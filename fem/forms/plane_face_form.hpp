@@ -27,6 +27,7 @@
 // in x, y leaves every g_i as it was: the translation costs nothing and couples to
 // nothing, so a mean can hold it (mean_displacement_form.hpp). Without r the plane's
 // origin stays at x = y = 0, and a translation of the body must shift a by −b·t.
+#include <array>
 #include <vector>
 
 #include "fem/forms/form.hpp"
@@ -55,8 +56,15 @@ class PlaneFaceForm : public Form {
   double z0_, k_;
   int reference_ = -1;  // r, or −1: the origin fixed
   Eigen::Vector2d reference_xy_ = Eigen::Vector2d::Zero();
-  Eigen::Vector2d origin(const Vector& x) const;  // u, or zero
-  double gap(const Vector& x, int node) const;   // g_i
+  struct Plane {
+    double a, b, c;
+    Eigen::Vector2d origin;  // u, or zero
+  };
+  Plane plane(const Vector& x) const;
+  double gap(const Vector& x, int node, const Plane& p) const;  // g_i
+  int block_size() const { return reference_ >= 0 ? 8 : 6; }
+  /// A face node's block: x_i, y_i, z_i, a, b, c, then x_r, y_r (the first block_size() count).
+  std::array<int, 8> block_dofs(int node) const;
   std::vector<int> blocks_;
 };
 
