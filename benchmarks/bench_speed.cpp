@@ -234,7 +234,7 @@ int main(int argc, char** argv) try {
       peaks.push_back(peak);
     }
     const fem::SolverWork& w = first.work;
-    std::printf("%-8s %-28s %10lld %10.2f %9d %9d %8d %6d %8d %9.0f  %s%s\n", item.c_str(), first.model.c_str(), w.dofs,
+    std::printf("%-8s %-28s %10lld %10.3f %9d %9d %8d %6d %8d %9.0f  %s%s\n", item.c_str(), first.model.c_str(), w.dofs,
                 bench::median(seconds), w.newton_iterations, w.factorizations, w.shifted_factorizations, w.lu_fallbacks,
                 w.cg_iterations, *std::max_element(peaks.begin(), peaks.end()), first.outcome.c_str(),
                 same_counts ? "" : " (counts differed between runs)");
