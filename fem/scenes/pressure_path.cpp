@@ -34,6 +34,14 @@ struct LoadedVolume {
   }
 };
 
+// CG's relative residual for K⁻¹∇V on the held factor. dp/dV is a quadratic form in K⁻¹∇V, whose
+// error after CG is the energy norm of the solve's error, of second order in the residual; the same
+// K⁻¹∇V is the path's slope, which the predictor needs to a few digits. At 10⁻⁵ the thesis scenes'
+// outputs stay within about 10⁻⁸ of a 10⁻¹⁰ solve's (the RRA's dp/dV 5·10⁻⁹), and a converged
+// state is no longer factorised only to meet the tighter tolerance: the thesis SPL pose's cells 258 →
+// 197 factorisations (docs/performance.md, dp/dV on the held factor).
+constexpr double kComplianceCgTolerance = 1e-5;
+
 // dp/dV = 1/(∇Vᵀ K⁻¹ ∇V) with K the tangent at x. The solver's last factorisation is at best
 // that of the iterate before x (1e-5 of the displacement away where Newton stops on its
 // contraction), and where Newton reuses factors (NewtonSettings::reuse_factor) several states
@@ -48,7 +56,7 @@ double pv_stiffness(const EnergyProblem& problem, const LoadedVolume& chamber, L
   Vector compliance;
   if (!tangent_at_x) {
     compliance = solver.solve(g);
-  } else if (!solver.solve_reusing_factor(*tangent_at_x, g, 1e-10, compliance)) {
+  } else if (!solver.solve_reusing_factor(*tangent_at_x, g, kComplianceCgTolerance, compliance)) {
     factorize_tangent(solver, *tangent_at_x, newton);
     compliance = solver.solve(g);
   }
