@@ -25,10 +25,10 @@ namespace {
 /// The output states a rod's table takes: those with a positive definite tangent.
 bool is_table_row(const TcaCellState& s) { return s.is_output && s.bending_compliance_per_Nmm2 > 0; }
 
-/// K⁻¹u for each u, K the tangent at xs: by CG on the path's factor (ConvergedTangent) to 10⁻¹⁰, as
-/// the path's own dp/dV, else from K's own factorisation in `solver` (K assembled where the path has
-/// not handed it on); false where K is not positive definite. The path has just solved with K, so CG
-/// costs a few sweeps for each u where a factorisation of K costs dozens.
+/// K⁻¹u for each u, K the tangent at xs: by CG on the path's factor (ConvergedTangent) to 10⁻¹⁰ (the
+/// path's own dp/dV takes 10⁻⁵, pressure_path.cpp), else from K's own factorisation in `solver` (K
+/// assembled where the path has not handed it on); false where K is not positive definite. The path
+/// has just solved with K, so CG costs a few sweeps for each u where a factorisation of K costs dozens.
 bool solve_with_tangent(const EnergyProblem& problem, const Vector& xs, const ConvergedTangent& tangent,
                         LinearSolver& solver, std::initializer_list<const Eigen::VectorXd*> u,
                         std::initializer_list<Eigen::VectorXd*> k_inverse_u) {
