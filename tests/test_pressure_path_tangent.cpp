@@ -1,9 +1,9 @@
 // What a pressure path hands on with each converged state (fem/scenes/pressure_path.hpp,
 // ConvergedTangent): the tangent at that state, and CG on the path's factor that solves with it as
 // the tangent's own factorisation does. The ring-pitch cells take their end-face compliances so
-// (fem/scenes/tca_cell.cpp); a wrong matrix (an iterate's, another load's) or a solve to the wrong
-// tolerance fails here. A short plain 3D tube (Hex20 at 2×2×2 points, level 1, half model), Newton
-// reusing factors as the 3D scenes do.
+// (fem/scenes/tca_cell.cpp), the path its own dp/dV; a wrong matrix (an iterate's, another load's) or
+// a solve to the wrong tolerance fails here. A short plain 3D tube (Hex20 at 2×2×2 points, level 1,
+// half model), Newton reusing factors as the 3D scenes do.
 #include <catch2/catch.hpp>
 #include <memory>
 
@@ -57,6 +57,13 @@ TEST_CASE("Each converged state comes with its tangent, and CG on the path's fac
     CHECK((*tangent.matrix - K).norm() <= 1e-12 * K.norm());
     REQUIRE(own.factorize(K) == LinearSolver::Status::positive_definite);
     const Vector exact = own.solve(b);
+    // dp/dV = 1/(∇Vᵀ K⁻¹ ∇V), which the path solves by CG on its factor to 10⁻⁵ (pressure_path.cpp: a
+    // quadratic form, its error second order in CG's residual), against K's own factor. Measured within
+    // 3·10⁻¹¹; with CG to 10⁻² instead, 1.1·10⁻⁷ at one state, which fails here.
+    Vector g = chamber->volume_gradient(xs);
+    problem.zero_prescribed(g);
+    const double dp_dV_kPa_per_mm3 = 1e3 / g.dot(own.solve(g));
+    CHECK(s.pv_stiffness_kPa_per_mm3 == Approx(dp_dV_kPa_per_mm3).epsilon(1e-8));
     Vector d;
     if (!tangent.solve_on_path_factor(b, 1e-10, d)) return;
     ++by_cg;
