@@ -329,6 +329,11 @@ TEST_CASE("simulate on the SPL config's own model: the cell rod, its cells and j
   CHECK(solver.at("factorizations").get<int>() >= 3);
   CHECK(solver.at("cell_dofs_summed").get<long long>() >=
         j.at("largest_cell_dofs").get<long long>() + j.at("largest_end_cell_dofs").get<long long>());
+  // The slowest cell: one of them, so more than their mean and no more than their sum.
+  const double longest = solver.at("longest_cell_seconds").get<double>();
+  const double summed = solver.at("cell_seconds_summed").get<double>();
+  CHECK(longest >= summed / solver.at("cell_paths").get<int>());
+  CHECK(longest <= summed);
   REQUIRE(j.at("cells").size() == 3);
   for (const auto& segment : j.at("cells")) {
     INFO("segment " << segment.at("segment"));

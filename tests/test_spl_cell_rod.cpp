@@ -11,6 +11,7 @@
 
 #include "fem/core/json_reader.hpp"
 #include "fem/scenes/scene_config.hpp"
+#include "fem/scenes/solver_work_json.hpp"
 #include "fem/scenes/spl_cell_job.hpp"
 #include "fem/scenes/spl_cell_rod.hpp"
 #include "fem/scenes/tca_cell_rod.hpp"
@@ -31,6 +32,7 @@ TEST_CASE("a cell job's solver work travels between processes with its table, ex
   r.work.lu_fallbacks = 3;
   r.work.cg_iterations = 1111;
   r.work.seconds = 48.812345678901234;
+  r.work.longest_seconds = 48.812345678901234;
   const CellJobResult back = cell_job_from_text(to_text(r));
   CHECK(back.work.paths == 1);
   CHECK(back.work.dofs == 15444);
@@ -40,12 +42,32 @@ TEST_CASE("a cell job's solver work travels between processes with its table, ex
   CHECK(back.work.lu_fallbacks == 3);
   CHECK(back.work.cg_iterations == 1111);
   CHECK(back.work.seconds == r.work.seconds);
+  CHECK(back.work.longest_seconds == r.work.longest_seconds);
   SolverWork sum;
   sum.add(back.work);
   sum.add(back.work);
   CHECK(sum.paths == 2);
   CHECK(sum.newton_iterations == 246);
   CHECK(sum.seconds == 2 * r.work.seconds);
+  CHECK(sum.longest_seconds == r.work.longest_seconds);  // the slowest of two equal cells: one's time
+}
+
+TEST_CASE("a cell rod's work keeps its slowest cell's seconds beside their sum", "[cell]") {
+  // bench_speed's bound on a cell rod's wall time, max(longest, summed / threads), reads both.
+  const PressurePathResult path;
+  SolverWork ends, rings;
+  ends.add(path, 100, 15.25);
+  ends.add(path, 100, 8.5);
+  rings.add(path, 50, 4.0);
+  rings.add(path, 50, 4.5);
+  CHECK(ends.longest_seconds == 15.25);
+  CHECK(rings.longest_seconds == 4.5);
+  SolverWork all = rings;
+  all.add(ends);
+  CHECK(all.paths == 4);
+  CHECK(all.seconds == 32.25);
+  CHECK(all.longest_seconds == 15.25);
+  CHECK(solver_work_from_json(solver_work_to_json(all)).longest_seconds == 15.25);
 }
 
 TEST_CASE("The SPL cell rod bends a lone distal segment as the 3CA cell rod does", "[cell][spl][long]") {

@@ -1,5 +1,7 @@
 #include "fem/scenes/solver_work.hpp"
 
+#include <algorithm>
+
 namespace softarm::fem {
 
 void SolverWork::add(const PressurePathResult& path, int path_dofs, double path_seconds) {
@@ -11,6 +13,7 @@ void SolverWork::add(const PressurePathResult& path, int path_dofs, double path_
   lu_fallbacks += path.lu_fallbacks;
   cg_iterations += path.cg_iterations;
   seconds += path_seconds;
+  longest_seconds = std::max(longest_seconds, path_seconds);
 }
 
 void SolverWork::add(const SolverWork& other) {
@@ -22,6 +25,7 @@ void SolverWork::add(const SolverWork& other) {
   lu_fallbacks += other.lu_fallbacks;
   cg_iterations += other.cg_iterations;
   seconds += other.seconds;
+  longest_seconds = std::max(longest_seconds, other.longest_seconds);
 }
 
 std::string solver_work_text(const SolverWork& w) {

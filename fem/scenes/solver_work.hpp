@@ -17,6 +17,9 @@ struct SolverWork {
   int lu_fallbacks = 0;            // LUs of an indefinite tangent (volume control)
   int cg_iterations = 0;           // on earlier factors
   double seconds = 0;              // each path's own seconds, summed: the work, not the wall time
+  double longest_seconds = 0;      // the slowest path's own: a path runs on one thread, so with the
+                                   // paths side by side on T threads no run ends before
+                                   // max(longest_seconds, seconds / T)
 
   /// One path of `dofs` unknowns that took `path_seconds`.
   void add(const PressurePathResult& path, int path_dofs, double path_seconds);

@@ -10,7 +10,8 @@ nlohmann::json solver_work_to_json(const SolverWork& w) {
           {"indefinite_tangents_lu", w.lu_fallbacks},
           {"shifted_cholesky_attempts", w.shifted_factorizations},
           {"cg_iterations", w.cg_iterations},
-          {"cell_seconds_summed", w.seconds}};
+          {"cell_seconds_summed", w.seconds},
+          {"longest_cell_seconds", w.longest_seconds}};
 }
 
 SolverWork solver_work_from_json(const nlohmann::json& j) {
@@ -23,6 +24,8 @@ SolverWork solver_work_from_json(const nlohmann::json& j) {
   w.shifted_factorizations = j.at("shifted_cholesky_attempts").get<int>();
   w.cg_iterations = j.at("cg_iterations").get<int>();
   w.seconds = j.at("cell_seconds_summed").get<double>();
+  // A design checkpoint written before the slowest cell's time was kept has none: it stays zero.
+  if (j.contains("longest_cell_seconds")) w.longest_seconds = j.at("longest_cell_seconds").get<double>();
   return w;
 }
 
