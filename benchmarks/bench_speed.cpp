@@ -8,7 +8,10 @@
 // Each run is a process of its own (this binary again, with --item), so that its peak memory is its
 // own and no run warms the next one's caches or allocator. A cell rod's unknowns and counts are its
 // cells' and end cells' summed (fem/scenes/solver_work.hpp): they are the same on every run of a
-// config; the times are not (a shared machine), hence the median.
+// config; the times are not (a shared machine), hence the median. For a cell rod also its cells'
+// own seconds summed (work_s), the slowest cell's (longest_s) and the least time its cells can take
+// on the threads given, max(longest_s, work_s / threads) (bound_s): each cell is one path on one
+// thread, so no balance of the cells over the threads ends a run sooner.
 //
 //   bench_speed [--items rra,tca,segment,spl,3d] [--repeat 3] [--threads N]
 //               [--rra configs/rra_thesis.json] [--tca configs/tca_thesis.json]
@@ -118,11 +121,22 @@ Figures run_item(const Options& o) {
   return f;
 }
 
+/// A table cell of seconds, 9 wide: "-" for none (negative).
+std::string format_seconds(double s) {
+  char text[32];
+  if (s < 0)
+    std::snprintf(text, sizeof text, "%9s", "-");
+  else
+    std::snprintf(text, sizeof text, "%9.3f", s);
+  return text;
+}
+
 /// The child's last line: the figures, tab-separated.
 void print_figures(const Figures& f) {
   const fem::SolverWork& w = f.work;
-  std::printf("FIGURES\t%s\t%lld\t%.6f\t%d\t%d\t%d\t%d\t%d\t%s\n", f.model.c_str(), w.dofs, f.seconds, w.newton_iterations,
-              w.factorizations, w.shifted_factorizations, w.lu_fallbacks, w.cg_iterations, f.outcome.c_str());
+  std::printf("FIGURES\t%s\t%lld\t%.6f\t%d\t%d\t%d\t%d\t%d\t%.6f\t%.6f\t%s\n", f.model.c_str(), w.dofs, f.seconds,
+              w.newton_iterations, w.factorizations, w.shifted_factorizations, w.lu_fallbacks, w.cg_iterations, w.seconds,
+              w.longest_seconds, f.outcome.c_str());
 }
 
 bool parse_figures(const std::string& output, Figures& f) {
@@ -131,7 +145,7 @@ bool parse_figures(const std::string& output, Figures& f) {
   std::stringstream line(output.substr(at + 8));
   std::vector<std::string> field;
   for (std::string s; std::getline(line, s, '\t');) field.push_back(s);
-  if (field.size() < 9) return false;
+  if (field.size() < 11) return false;
   f.model = field[0];
   f.work.dofs = std::stoll(field[1]);
   f.seconds = std::stod(field[2]);
@@ -140,7 +154,9 @@ bool parse_figures(const std::string& output, Figures& f) {
   f.work.shifted_factorizations = std::stoi(field[5]);
   f.work.lu_fallbacks = std::stoi(field[6]);
   f.work.cg_iterations = std::stoi(field[7]);
-  f.outcome = field[8].substr(0, field[8].find('\n'));
+  f.work.seconds = std::stod(field[8]);
+  f.work.longest_seconds = std::stod(field[9]);
+  f.outcome = field[10].substr(0, field[10].find('\n'));
   return true;
 }
 
@@ -209,11 +225,11 @@ int main(int argc, char** argv) try {
   }
   const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
   std::printf("bench_speed: %d threads (the RRA one), %d run(s) of each item, medians\n", o.threads, o.repeat);
-  std::printf("%-8s %-28s %10s %10s %9s %9s %8s %6s %8s %9s  %s\n", "item", "model", "unknowns", "time_s", "Newton",
-              "factorise", "shifted", "LU", "CG", "peak_MB", "outcome");
+  std::printf("%-8s %-28s %10s %10s %9s %9s %8s %9s %9s %8s %6s %8s %9s  %s\n", "item", "model", "unknowns", "time_s",
+              "work_s", "longest_s", "bound_s", "Newton", "factorise", "shifted", "LU", "CG", "peak_MB", "outcome");
   for (const std::string& item : o.items) {
     if (item == "3d") continue;
-    std::vector<double> seconds, peaks;
+    std::vector<double> seconds, work, longest, peaks;
     Figures first;
     bool same_counts = true;
     for (int run = 0; run < o.repeat; ++run) {
@@ -231,12 +247,21 @@ int main(int argc, char** argv) try {
       same_counts = same_counts && f.work.newton_iterations == first.work.newton_iterations &&
                     f.work.factorizations == first.work.factorizations && f.work.cg_iterations == first.work.cg_iterations;
       seconds.push_back(f.seconds);
+      work.push_back(f.work.seconds);
+      longest.push_back(f.work.longest_seconds);
       peaks.push_back(peak);
     }
     const fem::SolverWork& w = first.work;
-    std::printf("%-8s %-28s %10lld %10.3f %9d %9d %8d %6d %8d %9.0f  %s%s\n", item.c_str(), first.model.c_str(), w.dofs,
-                bench::median(seconds), w.newton_iterations, w.factorizations, w.shifted_factorizations, w.lu_fallbacks,
-                w.cg_iterations, *std::max_element(peaks.begin(), peaks.end()), first.outcome.c_str(),
+    // A cell rod's paths each run on one thread: no run ends before the slowest of them, nor before
+    // their summed seconds spread evenly over the threads (the RRA and the 3D FEM are one path each,
+    // timed as the run: "-").
+    const double work_s = bench::median(work), longest_s = bench::median(longest);
+    const std::string cells = first.work.seconds > 0 ? format_seconds(work_s) + " " + format_seconds(longest_s) + " " +
+                                                           format_seconds(std::max(longest_s, work_s / o.threads))
+                                                     : format_seconds(-1) + " " + format_seconds(-1) + " " + format_seconds(-1);
+    std::printf("%-8s %-28s %10lld %10.3f %s %9d %9d %8d %6d %8d %9.0f  %s%s\n", item.c_str(), first.model.c_str(), w.dofs,
+                bench::median(seconds), cells.c_str(), w.newton_iterations, w.factorizations, w.shifted_factorizations,
+                w.lu_fallbacks, w.cg_iterations, *std::max_element(peaks.begin(), peaks.end()), first.outcome.c_str(),
                 same_counts ? "" : " (counts differed between runs)");
     std::fflush(stdout);
   }
