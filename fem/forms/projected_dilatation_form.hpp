@@ -16,6 +16,7 @@
 #include <Eigen/LU>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -107,6 +108,7 @@ class ProjectedDilatationForm final : public ElasticForm {
 
   FormStatus add(const Vector& x, double* value, Vector* gradient, HessianAccumulator* hessian) const override {
     const int threads = thread_count();
+    if (threads == 1) return add_in_order(x, value, gradient, hessian);
     std::vector<double> values(threads, 0.0);
     std::vector<Vector> gradients(gradient ? threads : 0, Vector::Zero(x.size()));
     std::vector<FormStatus> status(threads);
@@ -129,6 +131,51 @@ class ProjectedDilatationForm final : public ElasticForm {
       if (value) *value += values[t];
       if (gradient) *gradient += gradients[t];
     }
+    return FormStatus::fine();
+  }
+
+  // One thread: the elements summed in their order, as the loop above does on one thread, each
+  // element's energy computed here or, inside a cell rod's task once other cells have ended, by an
+  // idle worker of parallel_tasks into lent_ (visit_in_order_with_help): the same bits either way.
+  FormStatus add_in_order(const Vector& x, double* value, Vector* gradient, HessianAccumulator* hessian) const {
+    const int n = mesh_.num_elements();
+    double W = 0.0;
+    Vector g = gradient ? Vector::Zero(x.size()) : Vector();
+    FormStatus status = FormStatus::fine();
+    const auto combine = [&](int e, const ElementEnergy& E_) {
+      W += E_.W;
+      const int* nodes = mesh_.element(e);
+      if (gradient)
+        for (int a = 0; a < E::kNodes; ++a) g.template segment<Dim>(Dim * nodes[a]) += E_.g.template segment<Dim>(Dim * a);
+      if (hessian) hessian->add_block(0, blocks_[e], E_.K.data());
+    };
+    if (lent_.size() != static_cast<std::size_t>(n)) {
+      lent_.resize(n);
+      lent_status_.resize(n);
+    }
+    visit_in_order_with_help(
+        n,
+        [&](int e) {
+          ElementEnergy E_;
+          status = element(e, x, gradient != nullptr, hessian != nullptr, E_);
+          if (status.ok) combine(e, E_);
+          return status.ok;
+        },
+        [&](int e) {
+          if (!lent_[e]) lent_[e] = std::make_unique<ElementEnergy>();
+          ElementEnergy& E_ = *lent_[e];
+          E_.W = 0.0;
+          E_.g.setZero();
+          lent_status_[e] = element(e, x, gradient != nullptr, hessian != nullptr, E_);
+        },
+        [&](int e) {
+          status = lent_status_[e];
+          if (status.ok) combine(e, *lent_[e]);
+          return status.ok;
+        });
+    if (!status.ok) return status;
+    if (value) *value += W;
+    if (gradient) *gradient += g;
     return FormStatus::fine();
   }
 
@@ -323,6 +370,9 @@ class ProjectedDilatationForm final : public ElasticForm {
   std::vector<Points> reference_;
   std::vector<ModeMatrix> projection_inverse_;
   std::vector<int> blocks_;
+  // Elements an idle worker computed for add_in_order, kept for the next assembly (allocated as lent).
+  mutable std::vector<std::unique_ptr<ElementEnergy>> lent_;
+  mutable std::vector<FormStatus> lent_status_;
 };
 
 }  // namespace softarm::fem
