@@ -34,6 +34,7 @@ struct HelpJob {
   std::atomic<bool> stop{false};
   int lenders_inside = 0;  // under the board's mutex
   std::exception_ptr failure;  // the first exception a lender threw (under the board's mutex)
+  int failed_at = -1;          // the item that threw it (written before its chunk is marked lent)
 };
 
 struct HelpBoard {
@@ -41,7 +42,7 @@ struct HelpBoard {
   std::condition_variable changed;  // a job posted or withdrawn, a lender left, the tasks ended
   std::vector<HelpJob*> jobs;
   std::atomic<int> idle{0};  // workers waiting to lend
-  bool tasks_running = false;
+  bool tasks_running = false;  // one parallel_tasks with several threads at a time (g_threads is 1 inside)
 };
 HelpBoard g_board;
 std::atomic<long> g_lent_items{0};
@@ -56,12 +57,16 @@ void lend_chunks(HelpJob& job) {
     }
     const int end = std::min(job.n, (c + 1) * kChunk);
     g_lent_items += end - c * kChunk;
-    try {
-      for (int i = c * kChunk; i < end; ++i) (*job.lend)(i);
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(g_board.mutex);
-      if (!job.failure) job.failure = std::current_exception();
-      job.stop = true;
+    for (int i = c * kChunk; i < end; ++i) {
+      try {
+        (*job.lend)(i);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(g_board.mutex);
+        job.failure = std::current_exception();
+        job.failed_at = i;
+        job.stop = true;
+        break;
+      }
     }
     job.state[c].store(kLent, std::memory_order_release);
   }
@@ -192,6 +197,7 @@ void visit_in_order_with_help(int n, const std::function<bool(int)>& own, const 
       g_board.changed.wait(lock, [this] { return job.lenders_inside == 0; });
     }
   };
+  bool reached_failure = false;  // a serial visit would have met the item that threw
   {
     const Withdraw withdraw{job};
     bool stopped = false;
@@ -203,11 +209,18 @@ void visit_in_order_with_help(int n, const std::function<bool(int)>& own, const 
         continue;
       }
       while (job.state[c].load(std::memory_order_acquire) != kLent) std::this_thread::yield();
-      if (job.stop.load()) break;  // a lender threw
-      for (int i = c * kChunk; i < end && !stopped; ++i) stopped = !take(i);
+      // A lender that threw did so in the first lent chunk this visit meets (every chunk before is
+      // this thread's, and the lender stops at its failure): take the items before the one that
+      // threw, then throw where a visit alone would have.
+      const int last = job.stop.load() ? job.failed_at : end;
+      for (int i = c * kChunk; i < last && !stopped; ++i) stopped = !take(i);
+      if (!stopped && last < end) {
+        reached_failure = true;
+        break;
+      }
     }
   }
-  if (job.failure) std::rethrow_exception(job.failure);
+  if (reached_failure && job.failure) std::rethrow_exception(job.failure);
 }
 
 }  // namespace softarm::fem

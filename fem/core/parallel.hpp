@@ -28,7 +28,8 @@ void parallel_tasks(int n, const std::function<void(int i)>& task, const TaskPro
 /// works from the start, in chunks; with none idle, or outside parallel_tasks, every i is own(i).
 /// Where i's result depends on i alone and own and take combine the results in order, the run gives
 /// the same bits whoever computed what. own or take returning false ends the visit there (after any
-/// lending thread has left); an exception thrown by lend is rethrown here.
+/// lending thread has left); an exception thrown by lend is rethrown here where the visit reaches
+/// the item that threw (a visit that stops before it returns as a visit alone would).
 void visit_in_order_with_help(int n, const std::function<bool(int i)>& own, const std::function<void(int i)>& lend,
                               const std::function<bool(int i)>& take);
 
