@@ -255,10 +255,10 @@ int main(int argc, char** argv) try {
     // A cell rod's paths each run on one thread: no run ends before the slowest of them, nor before
     // their summed seconds spread evenly over the threads (the RRA and the 3D FEM are one path each,
     // timed as the run: "-").
-    const double work_s = bench::median(work), longest_s = bench::median(longest);
-    const std::string cells = first.work.seconds > 0 ? format_seconds(work_s) + " " + format_seconds(longest_s) + " " +
-                                                           format_seconds(std::max(longest_s, work_s / o.threads))
-                                                     : format_seconds(-1) + " " + format_seconds(-1) + " " + format_seconds(-1);
+    const bool cell_rod = first.work.seconds > 0;
+    const double work_s = cell_rod ? bench::median(work) : -1, longest_s = cell_rod ? bench::median(longest) : -1;
+    const std::string cells = format_seconds(work_s) + " " + format_seconds(longest_s) + " " +
+                              format_seconds(cell_rod ? std::max(longest_s, work_s / o.threads) : -1);
     std::printf("%-8s %-28s %10lld %10.3f %s %9d %9d %8d %6d %8d %9.0f  %s%s\n", item.c_str(), first.model.c_str(), w.dofs,
                 bench::median(seconds), cells.c_str(), w.newton_iterations, w.factorizations, w.shifted_factorizations,
                 w.lu_fallbacks, w.cg_iterations, *std::max_element(peaks.begin(), peaks.end()), first.outcome.c_str(),

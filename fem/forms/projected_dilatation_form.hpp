@@ -117,12 +117,7 @@ class ProjectedDilatationForm final : public ElasticForm {
         ElementEnergy E_;
         status[t] = element(e, x, gradient != nullptr, hessian != nullptr, E_);
         if (!status[t].ok) return;
-        values[t] += E_.W;
-        const int* nodes = mesh_.element(e);
-        if (gradient)
-          for (int a = 0; a < E::kNodes; ++a)
-            gradients[t].template segment<Dim>(Dim * nodes[a]) += E_.g.template segment<Dim>(Dim * a);
-        if (hessian) hessian->add_block(t, blocks_[e], E_.K.data());
+        accumulate(e, E_, t, values[t], gradient ? &gradients[t] : nullptr, hessian);
       }
     });
     for (const auto& s : status)
@@ -134,6 +129,15 @@ class ProjectedDilatationForm final : public ElasticForm {
     return FormStatus::fine();
   }
 
+  // Element e's energy, gradient and tangent added into thread t's sums.
+  void accumulate(int e, const ElementEnergy& E_, int t, double& W, Vector* g, HessianAccumulator* hessian) const {
+    W += E_.W;
+    const int* nodes = mesh_.element(e);
+    if (g)
+      for (int a = 0; a < E::kNodes; ++a) g->template segment<Dim>(Dim * nodes[a]) += E_.g.template segment<Dim>(Dim * a);
+    if (hessian) hessian->add_block(t, blocks_[e], E_.K.data());
+  }
+
   // One thread: the elements summed in their order, as the loop above does on one thread, each
   // element's energy computed here or, inside a cell rod's task once other cells have ended, by an
   // idle worker of parallel_tasks into lent_ (visit_in_order_with_help): the same bits either way.
@@ -142,35 +146,25 @@ class ProjectedDilatationForm final : public ElasticForm {
     double W = 0.0;
     Vector g = gradient ? Vector::Zero(x.size()) : Vector();
     FormStatus status = FormStatus::fine();
-    const auto combine = [&](int e, const ElementEnergy& E_) {
-      W += E_.W;
-      const int* nodes = mesh_.element(e);
-      if (gradient)
-        for (int a = 0; a < E::kNodes; ++a) g.template segment<Dim>(Dim * nodes[a]) += E_.g.template segment<Dim>(Dim * a);
-      if (hessian) hessian->add_block(0, blocks_[e], E_.K.data());
-    };
-    if (lent_.size() != static_cast<std::size_t>(n)) {
-      lent_.resize(n);
-      lent_status_.resize(n);
-    }
+    if (lent_.size() != static_cast<std::size_t>(n)) lent_.resize(n);
     visit_in_order_with_help(
         n,
         [&](int e) {
           ElementEnergy E_;
           status = element(e, x, gradient != nullptr, hessian != nullptr, E_);
-          if (status.ok) combine(e, E_);
+          if (status.ok) accumulate(e, E_, 0, W, gradient ? &g : nullptr, hessian);
           return status.ok;
         },
         [&](int e) {
-          if (!lent_[e]) lent_[e] = std::make_unique<ElementEnergy>();
-          ElementEnergy& E_ = *lent_[e];
-          E_.W = 0.0;
-          E_.g.setZero();
-          lent_status_[e] = element(e, x, gradient != nullptr, hessian != nullptr, E_);
+          if (!lent_[e]) lent_[e] = std::make_unique<LentElement>();
+          LentElement& l = *lent_[e];
+          l.energy.W = 0.0;
+          l.energy.g.setZero();
+          l.status = element(e, x, gradient != nullptr, hessian != nullptr, l.energy);
         },
         [&](int e) {
-          status = lent_status_[e];
-          if (status.ok) combine(e, *lent_[e]);
+          status = lent_[e]->status;
+          if (status.ok) accumulate(e, lent_[e]->energy, 0, W, gradient ? &g : nullptr, hessian);
           return status.ok;
         });
     if (!status.ok) return status;
@@ -373,8 +367,11 @@ class ProjectedDilatationForm final : public ElasticForm {
   // Elements an idle worker computed for add_in_order, kept for the next assembly (allocated as lent:
   // ~29 KB a Hex20 element, at most the mesh's). Mutable scratch, so add() on one form is for one
   // thread at a time, as every scene has it (each task assembles a problem of its own).
-  mutable std::vector<std::unique_ptr<ElementEnergy>> lent_;
-  mutable std::vector<FormStatus> lent_status_;
+  struct LentElement {
+    ElementEnergy energy;
+    FormStatus status;
+  };
+  mutable std::vector<std::unique_ptr<LentElement>> lent_;
 };
 
 }  // namespace softarm::fem
